@@ -1,0 +1,22 @@
+# Shared compile settings for our own targets (warnings, sanitizers).
+function(lumaslam_target_defaults target)
+  target_compile_options(${target} PRIVATE -Wall -Wextra)
+  if(LUMASLAM_SANITIZE)
+    target_compile_options(${target} PRIVATE -fsanitize=${LUMASLAM_SANITIZE} -fno-omit-frame-pointer -g)
+    target_link_options(${target} PRIVATE -fsanitize=${LUMASLAM_SANITIZE})
+  endif()
+endfunction()
+
+# lumaslam_add_module(NAME DEPS dep...): one static library per folder of src/lumaslam,
+# named lumaslam_NAME, built from every .cpp in that folder. DEPS are other modules' or
+# packages' targets. Modules build separately so one module's tests never wait on another.
+function(lumaslam_add_module name)
+  cmake_parse_arguments(ARG "" "" "DEPS" ${ARGN})
+  file(GLOB sources CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/*.cpp)
+  set(target lumaslam_${name})
+  add_library(${target} STATIC ${sources})
+  target_include_directories(${target} PUBLIC ${PROJECT_SOURCE_DIR}/src)
+  target_link_libraries(${target} PUBLIC ${ARG_DEPS})
+  lumaslam_target_defaults(${target})
+  set_property(GLOBAL APPEND PROPERTY LUMASLAM_MODULES ${target})
+endfunction()

@@ -1,0 +1,36 @@
+#!/usr/bin/env bash
+# Installs the Debian packages lumaslam needs. Idempotent and quiet when all are present.
+# Works as root or through sudo; anything else fails with a message naming the packages.
+set -euo pipefail
+
+packages=(
+  build-essential cmake make pkg-config
+  libopencv-dev          # core, imgproc, imgcodecs, videoio, calib3d, features2d, dnn
+  libeigen3-dev
+  libceres-dev libsuitesparse-dev
+  libcli11-dev libspdlog-dev nlohmann-json3-dev libtbb-dev
+  libgtest-dev libgmock-dev libbenchmark-dev
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  status=$(dpkg-query -W -f='${Status}' "$p" 2>/dev/null || true)
+  [[ "$status" == "install ok installed" ]] || missing+=("$p")
+done
+[[ ${#missing[@]} -eq 0 ]] && exit 0
+
+echo "install-deps: installing ${missing[*]}"
+if [[ $(id -u) -eq 0 ]]; then
+  as_root=()
+elif command -v sudo >/dev/null 2>&1 && sudo -n true 2>/dev/null; then
+  as_root=(sudo)
+else
+  echo "install-deps: these Debian packages are missing: ${missing[*]}" >&2
+  echo "install-deps: run this script as root or with password-less sudo, or install them with:" >&2
+  echo "  sudo apt-get install ${missing[*]}" >&2
+  exit 1
+fi
+export DEBIAN_FRONTEND=noninteractive
+"${as_root[@]}" apt-get update -qq
+"${as_root[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+echo "install-deps: done"

@@ -1,0 +1,189 @@
+#include "lumaslam/core/settings_file.h"
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+#include "lumaslam/core/error.h"
+
+namespace lumaslam::core {
+namespace {
+
+template <typename T>
+constexpr const char* typeName() {
+  if constexpr (std::is_same_v<T, bool>) return "bool (0/1 or true/false)";
+  if constexpr (std::is_same_v<T, int>) return "integer";
+  if constexpr (std::is_same_v<T, double> || std::is_same_v<T, float>) return "number";
+  if constexpr (std::is_same_v<T, std::string>) return "string";
+  if constexpr (std::is_same_v<T, std::vector<double>>) return "list of numbers";
+  return "value";
+}
+
+std::string describe(const cv::FileNode& n) {
+  if (n.isInt()) return std::to_string(static_cast<int>(n));
+  if (n.isReal()) return std::to_string(static_cast<double>(n));
+  if (n.isString()) return "'" + static_cast<std::string>(n) + "'";
+  if (n.isSeq()) return "a list";
+  if (n.isMap()) return "a map";
+  return "an empty value";
+}
+
+// Returns nullopt when the node does not hold a T.
+template <typename T>
+std::optional<T> convert(const cv::FileNode& n) {
+  if constexpr (std::is_same_v<T, std::string>) {
+    if (n.isString()) return static_cast<std::string>(n);
+    return std::nullopt;
+  } else if constexpr (std::is_same_v<T, bool>) {
+    if (n.isInt()) {
+      const int v = static_cast<int>(n);
+      if (v == 0 || v == 1) return v == 1;
+    } else if (n.isString()) {
+      const auto s = static_cast<std::string>(n);
+      if (s == "true" || s == "True") return true;
+      if (s == "false" || s == "False") return false;
+    }
+    return std::nullopt;
+  } else if constexpr (std::is_same_v<T, int>) {
+    if (n.isInt()) return static_cast<int>(n);
+    if (n.isReal()) {
+      const double v = static_cast<double>(n);
+      if (std::floor(v) == v) return static_cast<int>(v);
+    }
+    return std::nullopt;
+  } else if constexpr (std::is_same_v<T, double> || std::is_same_v<T, float>) {
+    if (n.isInt() || n.isReal()) {
+      const double v = static_cast<double>(n);
+      if (std::isfinite(v)) return static_cast<T>(v);
+    }
+    return std::nullopt;
+  } else if constexpr (std::is_same_v<T, std::vector<double>>) {
+    if (!n.isSeq()) return std::nullopt;
+    std::vector<double> values;
+    for (const auto& item : n) {
+      if (!item.isInt() && !item.isReal()) return std::nullopt;
+      values.push_back(static_cast<double>(item));
+    }
+    return values;
+  }
+}
+
+}  // namespace
+
+SettingsFile::SettingsFile(cv::FileStorage storage, std::string origin)
+    : storage_(std::move(storage)), origin_(std::move(origin)) {}
+
+SettingsFile SettingsFile::open(const std::filesystem::path& path) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec)) fail("{}: settings file not found", path.string());
+  std::ifstream in(path);
+  std::stringstream text;
+  text << in.rdbuf();
+  if (!in && !in.eof()) fail("{}: cannot read settings file", path.string());
+  return fromString(text.str(), path.string());
+}
+
+SettingsFile SettingsFile::fromString(const std::string& yaml, const std::string& origin) {
+  std::string text = yaml;
+  // cv::FileStorage needs the %YAML header; ORB-SLAM files have it, hand-written ones may not.
+  if (text.rfind("%YAML", 0) != 0 && text.rfind("<?xml", 0) != 0 && text.rfind("{", 0) != 0) {
+    text = "%YAML:1.0\n" + text;
+  }
+  cv::FileStorage storage;
+  try {
+    storage.open(text, cv::FileStorage::READ | cv::FileStorage::MEMORY);
+  } catch (const cv::Exception& e) {
+    fail("{}: not a valid settings file: {}", origin, e.err);
+  }
+  if (!storage.isOpened()) fail("{}: not a valid settings file", origin);
+  return SettingsFile(std::move(storage), origin);
+}
+
+cv::FileNode SettingsFile::node(std::string_view key) const {
+  const std::string k(key);
+  cv::FileNode n = storage_[k];
+  if (!n.empty() || k.find('.') == std::string::npos) return n;
+  n = storage_.root();
+  std::string_view rest = key;
+  while (!rest.empty()) {
+    const auto dot = rest.find('.');
+    n = n[std::string(rest.substr(0, dot))];
+    if (n.empty()) return n;
+    rest = dot == std::string_view::npos ? std::string_view{} : rest.substr(dot + 1);
+  }
+  return n;
+}
+
+bool SettingsFile::has(std::string_view key) const {
+  const auto n = node(key);
+  return !n.empty() && !n.isNone();
+}
+
+std::vector<std::string> SettingsFile::keys() const { return storage_.root().keys(); }
+
+void SettingsFile::invalid(std::string_view key, std::string_view why) const {
+  fail("{}: key '{}': {}", origin_, key, why);
+}
+
+template <typename T>
+std::optional<T> SettingsFile::find(std::string_view key) const {
+  const auto n = node(key);
+  if (n.empty() || n.isNone()) return std::nullopt;
+  auto value = convert<T>(n);
+  if (!value) invalid(key, fmt::format("expected {}, found {}", typeName<T>(), describe(n)));
+  return value;
+}
+
+template <typename T>
+T SettingsFile::get(std::string_view key) const {
+  auto value = find<T>(key);
+  if (!value) fail("{}: key '{}' is missing (expected {})", origin_, key, typeName<T>());
+  return *value;
+}
+
+template <typename T>
+T SettingsFile::get(std::string_view key, T fallback) const {
+  return find<T>(key).value_or(std::move(fallback));
+}
+
+std::optional<cv::Mat> SettingsFile::findMatrix(std::string_view key, int rows, int cols) const {
+  const auto n = node(key);
+  if (n.empty() || n.isNone()) return std::nullopt;
+  cv::Mat m;
+  if (n.isMap()) {
+    try {
+      n >> m;
+    } catch (const cv::Exception&) {
+      m.release();
+    }
+  } else if (auto values = convert<std::vector<double>>(n)) {
+    if (static_cast<int>(values->size()) == rows * cols) m = cv::Mat(*values, true).reshape(1, rows);
+  }
+  if (m.empty()) invalid(key, fmt::format("expected a {}x{} opencv-matrix", rows, cols));
+  if (m.rows != rows || m.cols != cols) {
+    invalid(key, fmt::format("expected a {}x{} matrix, found {}x{}", rows, cols, m.rows, m.cols));
+  }
+  cv::Mat out;
+  m.convertTo(out, CV_64F);
+  return out;
+}
+
+cv::Mat SettingsFile::getMatrix(std::string_view key, int rows, int cols) const {
+  auto m = findMatrix(key, rows, cols);
+  if (!m) fail("{}: key '{}' is missing (expected a {}x{} opencv-matrix)", origin_, key, rows, cols);
+  return *m;
+}
+
+#define LUMASLAM_SETTINGS_INSTANTIATE(T)                                     \
+  template std::optional<T> SettingsFile::find<T>(std::string_view) const; \
+  template T SettingsFile::get<T>(std::string_view) const;                 \
+  template T SettingsFile::get<T>(std::string_view, T) const;
+LUMASLAM_SETTINGS_INSTANTIATE(int)
+LUMASLAM_SETTINGS_INSTANTIATE(double)
+LUMASLAM_SETTINGS_INSTANTIATE(float)
+LUMASLAM_SETTINGS_INSTANTIATE(bool)
+LUMASLAM_SETTINGS_INSTANTIATE(std::string)
+LUMASLAM_SETTINGS_INSTANTIATE(std::vector<double>)
+#undef LUMASLAM_SETTINGS_INSTANTIATE
+
+}  // namespace lumaslam::core

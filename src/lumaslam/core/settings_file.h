@@ -1,0 +1,59 @@
+#pragma once
+// Typed access to an ORB-SLAM3-style settings file (%YAML:1.0, read with cv::FileStorage).
+// Keys are flat ("Camera.fx", "Enhancement.preset"); a key that is not found flat is also
+// looked up as a nested path (Camera: {fx: ...}). Every failure names file, key and the
+// expected type.
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <opencv2/core.hpp>
+
+namespace lumaslam::core {
+
+class SettingsFile {
+ public:
+  // Throws Error if the file is missing or is not a YAML/XML/JSON file cv::FileStorage reads.
+  static SettingsFile open(const std::filesystem::path& path);
+  // Parses settings from text (tests, embedded defaults); `origin` names it in errors.
+  static SettingsFile fromString(const std::string& yaml, const std::string& origin = "<string>");
+
+  const std::string& origin() const { return origin_; }
+  bool has(std::string_view key) const;
+  std::vector<std::string> keys() const;  // top-level keys, in file order
+
+  // Required value: throws Error "FILE: key 'K' is missing (expected T)" or "... is not a T".
+  template <typename T>
+  T get(std::string_view key) const;
+  // Optional value: fallback when absent, Error when present but of the wrong type.
+  template <typename T>
+  T get(std::string_view key, T fallback) const;
+  template <typename T>
+  std::optional<T> find(std::string_view key) const;
+
+  // An `!!opencv-matrix` of the given shape (rows/cols checked), as CV_64F.
+  cv::Mat getMatrix(std::string_view key, int rows, int cols) const;
+  std::optional<cv::Mat> findMatrix(std::string_view key, int rows, int cols) const;
+
+  [[noreturn]] void invalid(std::string_view key, std::string_view why) const;
+
+ private:
+  SettingsFile(cv::FileStorage storage, std::string origin);
+  cv::FileNode node(std::string_view key) const;
+
+  cv::FileStorage storage_;
+  std::string origin_;
+};
+
+// Supported T for get/find: bool (0/1, true/false), int, double, float, std::string,
+// std::vector<double>.
+extern template int SettingsFile::get<int>(std::string_view) const;
+extern template double SettingsFile::get<double>(std::string_view) const;
+extern template float SettingsFile::get<float>(std::string_view) const;
+extern template bool SettingsFile::get<bool>(std::string_view) const;
+extern template std::string SettingsFile::get<std::string>(std::string_view) const;
+extern template std::vector<double> SettingsFile::get<std::vector<double>>(std::string_view) const;
+
+}  // namespace lumaslam::core
