@@ -1,0 +1,26 @@
+#pragma once
+// The features of one frame as tracking hands them to a keyframe. Immutable once a keyframe
+// holds it (shared, read without locks).
+#include <vector>
+
+#include <opencv2/core.hpp>
+
+namespace lumaslam::map {
+
+struct FeatureSet {
+  std::vector<cv::KeyPoint> keypoints;   // as detected (distorted), level-0 pixels, octave set
+  std::vector<cv::Point2f> undistorted;  // same order, undistorted (rectified) pixels
+  std::vector<float> u_right;            // stereo / virtual-stereo right u; < 0 if none
+  std::vector<float> depth;              // metres; < 0 if none
+  cv::Mat descriptors;                   // N x 32, CV_8U
+
+  std::size_t size() const { return keypoints.size(); }
+  bool hasStereo(std::size_t i) const { return i < u_right.size() && u_right[i] >= 0.0F; }
+};
+
+struct PinholeIntrinsics {
+  double fx = 0, fy = 0, cx = 0, cy = 0;
+  double bf = 0;  // baseline * fx (stereo and RGB-D); 0 for monocular
+};
+
+}  // namespace lumaslam::map

@@ -1,0 +1,69 @@
+#pragma once
+// The map: the only state shared between tracking, local mapping and loop closing.
+//
+// Locking story (lock order from outer to inner; never acquire an outer lock while holding
+// an inner one):
+//   1. Map::updateMutex()   held by tracking for one frame and by mapping / loop closing
+//                           while they write optimisation results back, so that tracking
+//                           never sees half of a bundle adjustment applied.
+//   2. Map's own structure lock (shared_mutex, internal): membership of keyframes/points.
+//   3. Object locks inside KeyFrame (pose / points / graph) and MapPoint: leaf locks. They are
+//      held only inside one accessor and never two at once: methods that need another
+//      object's data copy it out first (e.g. KeyFrame::updateConnections reads each point's
+//      observations, releases, then writes its own edges, then each neighbour's).
+// Objects are never deleted under someone's feet: retiring marks them bad and removes them
+// from the Map; shared_ptrs held elsewhere keep them alive until released.
+#include <atomic>
+#include <memory>
+#include <mutex>
+#include <shared_mutex>
+#include <unordered_map>
+#include <vector>
+
+#include "lumaslam/map/keyframe.h"
+#include "lumaslam/map/map_point.h"
+
+namespace lumaslam::map {
+
+class Map {
+ public:
+  Id nextKeyFrameId() { return next_keyframe_id_++; }
+  Id nextMapPointId() { return next_point_id_++; }
+
+  void addKeyFrame(const std::shared_ptr<KeyFrame>& keyframe);
+  void addMapPoint(const std::shared_ptr<MapPoint>& point);
+
+  std::shared_ptr<KeyFrame> keyFrame(Id id) const;
+  std::shared_ptr<MapPoint> mapPoint(Id id) const;
+  std::vector<std::shared_ptr<KeyFrame>> keyFrames() const;  // sorted by id
+  std::vector<std::shared_ptr<MapPoint>> mapPoints() const;  // sorted by id
+  std::size_t keyFrameCount() const;
+  std::size_t mapPointCount() const;
+  std::shared_ptr<KeyFrame> originKeyFrame() const;
+
+  // Marks the point bad, detaches it from every keyframe and removes it from the map.
+  void retireMapPoint(const std::shared_ptr<MapPoint>& point);
+  // ORB-SLAM's KeyFrame::SetBadFlag: detaches the keyframe from the covisibility graph and
+  // its points (retiring points left with too few observations), hands its children to the
+  // covisible keyframes best connected to them, and removes it. The origin is never retired.
+  // Returns false if it was not retired.
+  bool retireKeyFrame(const std::shared_ptr<KeyFrame>& keyframe);
+  // Fusion: every observation of `old_point` moves to `new_point` (unless that keyframe
+  // already sees `new_point`); `old_point` is retired and records its replacement.
+  void replaceMapPoint(const std::shared_ptr<MapPoint>& old_point,
+                       const std::shared_ptr<MapPoint>& new_point);
+
+  std::mutex& updateMutex() const { return update_mutex_; }
+  void clear();
+
+ private:
+  mutable std::mutex update_mutex_;
+  mutable std::shared_mutex mutex_;
+  std::unordered_map<Id, std::shared_ptr<KeyFrame>> keyframes_;
+  std::unordered_map<Id, std::shared_ptr<MapPoint>> points_;
+  std::weak_ptr<KeyFrame> origin_;
+  std::atomic<Id> next_keyframe_id_{0};
+  std::atomic<Id> next_point_id_{0};
+};
+
+}  // namespace lumaslam::map
