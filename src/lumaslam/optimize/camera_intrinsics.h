@@ -1,0 +1,14 @@
+#pragma once
+// The camera model the optimisers project with: a rectified pinhole (stereo/RGB-D adds bf,
+// the baseline times fx, so that the right image's column is u_r = u - bf / z).
+namespace lumaslam::optimize {
+
+struct CameraIntrinsics {
+  double fx = 0.0;
+  double fy = 0.0;
+  double cx = 0.0;
+  double cy = 0.0;
+  double bf = 0.0;  // baseline * fx [px * m]; only used by stereo observations
+};
+
+}  // namespace lumaslam::optimize
