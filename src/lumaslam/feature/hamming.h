@@ -1,0 +1,34 @@
+#pragma once
+// Hamming distance between 256-bit ORB descriptors, and ORB-SLAM's distance thresholds.
+#include <bit>
+#include <cstdint>
+#include <cstring>
+
+#include <opencv2/core.hpp>
+
+#include "lumaslam/feature/steered_brief.h"
+
+namespace lumaslam::feature {
+
+inline constexpr int kThHigh = 100;  // loose: projection search (tracking)
+inline constexpr int kThLow = 50;    // strict: matching without a position prior
+
+// Number of differing bits between two 32-byte descriptors (popcount on 64-bit words).
+inline int hammingDistance(const std::uint8_t* a, const std::uint8_t* b) {
+  int distance = 0;
+  for (int offset = 0; offset < kDescriptorBytes; offset += 8) {
+    std::uint64_t wordA;
+    std::uint64_t wordB;
+    std::memcpy(&wordA, a + offset, 8);
+    std::memcpy(&wordB, b + offset, 8);
+    distance += std::popcount(wordA ^ wordB);
+  }
+  return distance;
+}
+
+// Rows `rowA` of `a` and `rowB` of `b` (both CV_8UC1 with 32 columns).
+inline int hammingDistance(const cv::Mat& a, int rowA, const cv::Mat& b, int rowB) {
+  return hammingDistance(a.ptr<std::uint8_t>(rowA), b.ptr<std::uint8_t>(rowB));
+}
+
+}  // namespace lumaslam::feature

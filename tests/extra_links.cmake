@@ -1,0 +1,2 @@
+target_link_libraries(test_feature_orb_extractor PRIVATE opencv_imgcodecs)
+target_link_libraries(test_feature_matchers PRIVATE opencv_imgcodecs)

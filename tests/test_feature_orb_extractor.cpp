@@ -1,0 +1,340 @@
+// ORB extractor on real EuRoC and KITTI frames: count, placement, coverage vs cv::ORB, mask,
+// rotation and scale behaviour, descriptors identical to cv::ORB's, bad input.
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <map>
+
+#include <gtest/gtest.h>
+#include <opencv2/features2d.hpp>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "lumaslam/core/error.h"
+#include "lumaslam/feature/grid_coverage.h"
+#include "lumaslam/feature/hamming.h"
+#include "lumaslam/feature/orb_extractor.h"
+#include "lumaslam/feature/projection_matcher.h"
+#include "lumaslam/feature/steered_brief.h"
+#include "test_paths.h"
+
+namespace lumaslam::feature {
+namespace {
+
+namespace fs = std::filesystem;
+
+fs::path eurocFrame(const std::string& camera, int index) {
+  std::vector<fs::path> files;
+  for (const auto& entry :
+       fs::directory_iterator(test::dataDir() / "euroc/V1_01_easy_micro/mav0" / camera / "data")) {
+    files.push_back(entry.path());
+  }
+  std::sort(files.begin(), files.end());
+  return files.at(index);
+}
+
+fs::path kittiFrame(int index) {
+  char name[16];
+  std::snprintf(name, sizeof(name), "%06d.png", index);
+  return test::dataDir() / "kitti/odometry_07_first160/sequences/07/image_0" / name;
+}
+
+cv::Mat loadGray(const fs::path& path) {
+  cv::Mat image = cv::imread(path.string(), cv::IMREAD_GRAYSCALE);
+  if (image.empty()) ADD_FAILURE() << "cannot read " << path;
+  return image;
+}
+
+const OrbExtractor& defaultExtractor() {
+  static const OrbExtractor extractor{OrbSettings{}};
+  return extractor;
+}
+
+double circularDifference(double a, double b) {
+  double d = std::fmod(a - b, 360.0);
+  if (d > 180.0) d -= 360.0;
+  if (d < -180.0) d += 360.0;
+  return d;
+}
+
+double median(std::vector<double> values) {
+  std::nth_element(values.begin(), values.begin() + values.size() / 2, values.end());
+  return values[values.size() / 2];
+}
+
+class OrbOnRealFrames : public ::testing::TestWithParam<std::string> {
+ protected:
+  cv::Mat image() const {
+    return GetParam() == "euroc" ? loadGray(eurocFrame("cam0", 0)) : loadGray(kittiFrame(0));
+  }
+};
+
+TEST_P(OrbOnRealFrames, ExtractsTheRequestedNumberWithinTheImage) {
+  const cv::Mat gray = image();
+  const OrbExtractor& extractor = defaultExtractor();
+  const OrbFeatures features = extractor.extract(gray);
+  const int n = static_cast<int>(features.keypoints.size());
+  EXPECT_LE(n, 1000);
+  EXPECT_GE(n, 970);
+  ASSERT_EQ(features.descriptors.rows, n);
+  EXPECT_EQ(features.descriptors.cols, 32);
+  EXPECT_EQ(features.descriptors.type(), CV_8UC1);
+  ASSERT_EQ(static_cast<int>(features.pyramid.size()), 8);
+
+  std::vector<int> perLevel(8, 0);
+  for (const cv::KeyPoint& keypoint : features.keypoints) {
+    ASSERT_GE(keypoint.octave, 0);
+    ASSERT_LT(keypoint.octave, 8);
+    ++perLevel[keypoint.octave];
+    const float scale = extractor.levels().scale(keypoint.octave);
+    EXPECT_NEAR(keypoint.size, 31.0f * scale, 1e-3f);
+    EXPECT_GE(keypoint.angle, 0.0f);
+    EXPECT_LT(keypoint.angle, 360.0f);
+    // The whole descriptor patch (19 px at the keypoint's level) lies inside the image.
+    EXPECT_GE(keypoint.pt.x, 19.0f * scale - 1.0f);
+    EXPECT_GE(keypoint.pt.y, 19.0f * scale - 1.0f);
+    EXPECT_LE(keypoint.pt.x, gray.cols - 19.0f * scale + 1.0f);
+    EXPECT_LE(keypoint.pt.y, gray.rows - 19.0f * scale + 1.0f);
+  }
+  for (int level = 0; level < 8; ++level) {
+    EXPECT_LE(perLevel[level], extractor.featureBudget()[level]) << "level " << level;
+    EXPECT_GT(perLevel[level], 0) << "level " << level;
+  }
+  EXPECT_EQ(extractor.levels().sigma2(3),
+            extractor.levels().scale(3) * extractor.levels().scale(3));
+}
+
+TEST_P(OrbOnRealFrames, CoversTheImageAtLeastAsWellAsOpenCvOrb) {
+  const cv::Mat gray = image();
+  const OrbFeatures ours = defaultExtractor().extract(gray);
+  std::vector<cv::KeyPoint> theirs;
+  cv::ORB::create(1000, 1.2f, 8)->detect(gray, theirs);
+  const double ourCoverage = gridCoverage(ours.keypoints, gray.size());
+  const double theirCoverage = gridCoverage(theirs, gray.size());
+  RecordProperty("our_coverage", std::to_string(ourCoverage));
+  RecordProperty("cv_orb_coverage", std::to_string(theirCoverage));
+  EXPECT_GE(ourCoverage, theirCoverage);
+  EXPECT_GE(ourCoverage, 0.85);
+}
+
+TEST_P(OrbOnRealFrames, KeepsFeaturesOutOfTheMask) {
+  const cv::Mat gray = image();
+  cv::Mat mask = cv::Mat::zeros(gray.size(), CV_8UC1);
+  cv::rectangle(mask, cv::Rect(gray.cols / 4, gray.rows / 4, gray.cols / 3, gray.rows / 2),
+                cv::Scalar(255), cv::FILLED);
+  cv::circle(mask, cv::Point(gray.cols * 4 / 5, gray.rows / 3), gray.rows / 6, cv::Scalar(1),
+             cv::FILLED);
+  const OrbFeatures unmasked = defaultExtractor().extract(gray);
+  const auto insideMask = [&](const cv::KeyPoint& k) {
+    return mask.at<uchar>(cvRound(k.pt.y), cvRound(k.pt.x)) != 0;
+  };
+  ASSERT_GT(std::count_if(unmasked.keypoints.begin(), unmasked.keypoints.end(), insideMask), 50)
+      << "the mask should cover textured parts of the image for this test to mean anything";
+
+  const OrbFeatures masked = defaultExtractor().extract(gray, mask);
+  EXPECT_EQ(std::count_if(masked.keypoints.begin(), masked.keypoints.end(), insideMask), 0);
+  EXPECT_GE(masked.keypoints.size(), 900u) << "the budget moves to the unmasked area";
+  EXPECT_EQ(masked.descriptors.rows, static_cast<int>(masked.keypoints.size()));
+}
+
+INSTANTIATE_TEST_SUITE_P(EurocAndKitti, OrbOnRealFrames, ::testing::Values("euroc", "kitti"));
+
+TEST(OrbExtractor, AngleFollowsAnImageRotation) {
+  const cv::Mat gray = loadGray(eurocFrame("cam0", 0));
+  const double rotationDegrees = 40.0;
+  const cv::Point2f center(gray.cols / 2.0f, gray.rows / 2.0f);
+  const cv::Mat M = cv::getRotationMatrix2D(center, rotationDegrees, 1.0);
+  cv::Mat rotated;
+  cv::warpAffine(gray, rotated, M, gray.size(), cv::INTER_LINEAR);
+  // Direction (1, 0) after the warp gives the expected keypoint angle change (y points down).
+  const double expectedChange = std::atan2(M.at<double>(1, 0), M.at<double>(0, 0)) * 180.0 / CV_PI;
+
+  const OrbFeatures before = defaultExtractor().extract(gray);
+  const OrbFeatures after = defaultExtractor().extract(rotated);
+  std::vector<double> angleErrors;
+  std::vector<double> distances;
+  for (int i = 0; i < static_cast<int>(before.keypoints.size()); ++i) {
+    const cv::KeyPoint& k = before.keypoints[i];
+    const cv::Point2f moved(static_cast<float>(M.at<double>(0, 0) * k.pt.x +
+                                               M.at<double>(0, 1) * k.pt.y + M.at<double>(0, 2)),
+                            static_cast<float>(M.at<double>(1, 0) * k.pt.x +
+                                               M.at<double>(1, 1) * k.pt.y + M.at<double>(1, 2)));
+    int nearest = -1;
+    float nearestDistance = 1.5f * before.keypoints[i].size / 31.0f;
+    for (int j = 0; j < static_cast<int>(after.keypoints.size()); ++j) {
+      if (after.keypoints[j].octave != k.octave) continue;
+      const float d = static_cast<float>(cv::norm(after.keypoints[j].pt - moved));
+      if (d < nearestDistance) {
+        nearestDistance = d;
+        nearest = j;
+      }
+    }
+    if (nearest < 0) continue;
+    angleErrors.push_back(
+        std::abs(circularDifference(after.keypoints[nearest].angle - k.angle, expectedChange)));
+    distances.push_back(hammingDistance(before.descriptors, i, after.descriptors, nearest));
+  }
+  ASSERT_GE(angleErrors.size(), 200u) << "too few repeated keypoints to judge";
+  EXPECT_LT(median(angleErrors), 3.0);
+  const auto closeAngles =
+      std::count_if(angleErrors.begin(), angleErrors.end(), [](double e) { return e < 10.0; });
+  EXPECT_GE(closeAngles, static_cast<long>(0.8 * angleErrors.size()));
+  // Steered BRIEF: the same corner gives nearly the same descriptor after rotation.
+  EXPECT_LT(median(distances), 40.0);
+}
+
+TEST(OrbExtractor, ScalingTheImageShiftsTheOctave) {
+  const cv::Mat gray = loadGray(eurocFrame("cam0", 0));
+  constexpr int kShift = 2;
+  const double factor = std::pow(1.2, kShift);
+  cv::Mat smaller;
+  cv::resize(gray, smaller, cv::Size(cvRound(gray.cols / factor), cvRound(gray.rows / factor)), 0,
+             0, cv::INTER_AREA);
+  const OrbFeatures large = defaultExtractor().extract(gray);
+  const OrbFeatures small = defaultExtractor().extract(smaller);
+
+  std::map<int, int> octaveShiftVotes;
+  int compared = 0;
+  for (int i = 0; i < static_cast<int>(large.keypoints.size()); ++i) {
+    const cv::KeyPoint& k = large.keypoints[i];
+    const cv::Point2f expected = k.pt * static_cast<float>(1.0 / factor);
+    int best = -1;
+    int bestDistance = kThLow;
+    for (int j = 0; j < static_cast<int>(small.keypoints.size()); ++j) {
+      const float tolerance = 2.0f * small.keypoints[j].size / 31.0f;
+      if (cv::norm(small.keypoints[j].pt - expected) > tolerance) continue;
+      const int d = hammingDistance(large.descriptors, i, small.descriptors, j);
+      if (d < bestDistance) {
+        bestDistance = d;
+        best = j;
+      }
+    }
+    if (best < 0) continue;
+    ++compared;
+    ++octaveShiftVotes[k.octave - small.keypoints[best].octave];
+  }
+  ASSERT_GE(compared, 100);
+  const auto mode = std::max_element(octaveShiftVotes.begin(), octaveShiftVotes.end(),
+                                     [](auto& a, auto& b) { return a.second < b.second; });
+  EXPECT_EQ(mode->first, kShift);
+  EXPECT_GE(mode->second, compared / 2);
+}
+
+TEST(OrbExtractor, DescriptorsAreBitIdenticalToOpenCvOrb) {
+  // cv::ORB with provided keypoints keeps their angle and samples the same learned pattern on
+  // a 7x7 sigma-2 smoothed image. It smooths a region of a reflect-padded buffer, which rounds
+  // ~1% of pixels differently from smoothing the bare image, so we give computeSteeredBrief
+  // that same smoothed image: then every bit must agree (this checks the pattern table).
+  const cv::Mat gray = loadGray(eurocFrame("cam0", 5));
+  const OrbFeatures ours = defaultExtractor().extract(gray);
+  std::vector<cv::KeyPoint> levelZero;
+  std::vector<int> rows;
+  for (int i = 0; i < static_cast<int>(ours.keypoints.size()); ++i) {
+    if (ours.keypoints[i].octave == 0) {
+      levelZero.push_back(ours.keypoints[i]);
+      rows.push_back(i);
+    }
+  }
+  ASSERT_GE(levelZero.size(), 100u);
+  std::vector<cv::KeyPoint> computed = levelZero;
+  cv::Mat theirs;
+  cv::ORB::create(1000, 1.2f, 1, 19, 0, 2, cv::ORB::HARRIS_SCORE, 31)
+      ->compute(gray, computed, theirs);
+  ASSERT_EQ(computed.size(), levelZero.size());
+
+  cv::Mat padded;
+  cv::copyMakeBorder(gray, padded, 32, 32, 32, 32, cv::BORDER_REFLECT_101);
+  cv::Mat smoothedLikeOpenCv = padded(cv::Rect(32, 32, gray.cols, gray.rows));
+  cv::GaussianBlur(smoothedLikeOpenCv, smoothedLikeOpenCv, cv::Size(7, 7), 2, 2,
+                   cv::BORDER_REFLECT_101);
+  int identical = 0;
+  std::vector<double> extractorDistances;
+  for (int i = 0; i < static_cast<int>(computed.size()); ++i) {
+    ASSERT_EQ(computed[i].pt, levelZero[i].pt);
+    ASSERT_EQ(computed[i].angle, levelZero[i].angle);
+    Descriptor descriptor;
+    computeSteeredBrief(smoothedLikeOpenCv, levelZero[i].pt, levelZero[i].angle, descriptor.data());
+    if (hammingDistance(theirs.ptr<std::uint8_t>(i), descriptor.data()) == 0) ++identical;
+    extractorDistances.push_back(hammingDistance(theirs, i, ours.descriptors, rows[i]));
+  }
+  EXPECT_EQ(identical, static_cast<int>(computed.size()));
+  // The extractor's own smoothing differs only by those rounding flips: a bit or two at most.
+  EXPECT_LE(median(extractorDistances), 1.0);
+  EXPECT_LE(*std::max_element(extractorDistances.begin(), extractorDistances.end()), 6.0);
+}
+
+TEST(OrbExtractor, ParallelLevelsGiveTheSameFeatures) {
+  const cv::Mat gray = loadGray(kittiFrame(10));
+  OrbSettings settings;
+  settings.parallelLevels = true;
+  const OrbFeatures parallel = OrbExtractor(settings).extract(gray);
+  const OrbFeatures sequential = defaultExtractor().extract(gray);
+  ASSERT_EQ(parallel.keypoints.size(), sequential.keypoints.size());
+  for (std::size_t i = 0; i < parallel.keypoints.size(); ++i) {
+    EXPECT_EQ(parallel.keypoints[i].pt, sequential.keypoints[i].pt);
+    EXPECT_EQ(parallel.keypoints[i].angle, sequential.keypoints[i].angle);
+  }
+  EXPECT_EQ(cv::norm(parallel.descriptors, sequential.descriptors, cv::NORM_HAMMING), 0.0);
+}
+
+TEST(OrbExtractor, FlatImageGivesNoFeaturesWithoutFailing) {
+  const cv::Mat flat(480, 640, CV_8UC1, cv::Scalar(128));
+  const OrbFeatures features = defaultExtractor().extract(flat);
+  EXPECT_TRUE(features.keypoints.empty());
+  EXPECT_EQ(features.descriptors.rows, 0);
+  EXPECT_EQ(features.descriptors.cols, 32);
+}
+
+void expectErrorMentioning(const std::function<void()>& action, const std::string& text) {
+  try {
+    action();
+    ADD_FAILURE() << "expected lumaslam::Error mentioning '" << text << "'";
+  } catch (const Error& error) {
+    EXPECT_NE(std::string(error.what()).find(text), std::string::npos) << error.what();
+  }
+}
+
+TEST(OrbExtractor, RejectsBadImagesAndMasks) {
+  const OrbExtractor& extractor = defaultExtractor();
+  const cv::Mat gray(480, 640, CV_8UC1, cv::Scalar(0));
+  expectErrorMentioning([&] { extractor.extract(cv::Mat()); }, "empty");
+  expectErrorMentioning([&] { extractor.extract(cv::Mat(480, 640, CV_8UC3)); }, "CV_8UC1");
+  expectErrorMentioning([&] { extractor.extract(cv::Mat(20, 640, CV_8UC1)); }, "too small");
+  expectErrorMentioning([&] { extractor.extract(gray, cv::Mat(240, 320, CV_8UC1)); }, "mask");
+  expectErrorMentioning([&] { extractor.extract(gray, cv::Mat(480, 640, CV_32FC1)); }, "mask");
+}
+
+TEST(OrbSettings, ReadsOrbSlamKeysAndNamesTheFileOnBadValues) {
+  const auto settings = core::SettingsFile::fromString(
+      "%YAML:1.0\nORBextractor.nFeatures: 1500\nORBextractor.scaleFactor: 1.25\n"
+      "ORBextractor.nLevels: 6\nORBextractor.iniThFAST: 18\nORBextractor.minThFAST: 5\n",
+      "orb.yaml");
+  const OrbSettings orb = OrbSettings::fromSettings(settings);
+  EXPECT_EQ(orb.nFeatures, 1500);
+  EXPECT_FLOAT_EQ(orb.scaleFactor, 1.25f);
+  EXPECT_EQ(orb.nLevels, 6);
+  EXPECT_EQ(orb.iniThFAST, 18);
+  EXPECT_EQ(orb.minThFAST, 5);
+  EXPECT_EQ(
+      OrbSettings::fromSettings(core::SettingsFile::fromString("%YAML:1.0\nx: 1\n")).nFeatures,
+      1000);
+
+  expectErrorMentioning(
+      [] {
+        OrbSettings::fromSettings(core::SettingsFile::fromString(
+            "%YAML:1.0\nORBextractor.scaleFactor: 0.8\n", "bad.yaml"));
+      },
+      "bad.yaml: ORBextractor.scaleFactor");
+  expectErrorMentioning(
+      [] {
+        OrbSettings::fromSettings(core::SettingsFile::fromString(
+            "%YAML:1.0\nORBextractor.iniThFAST: 5\nORBextractor.minThFAST: 9\n", "thr.yaml"));
+      },
+      "ORBextractor.minThFAST");
+  OrbSettings zero;
+  zero.nFeatures = 0;
+  expectErrorMentioning([&] { OrbExtractor{zero}; }, "nFeatures");
+}
+
+}  // namespace
+}  // namespace lumaslam::feature
