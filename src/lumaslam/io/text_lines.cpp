@@ -66,8 +66,8 @@ double parseNumber(std::string_view token, const std::filesystem::path& file,
   return value;
 }
 
-double parseNanosecondsAsSeconds(std::string_view token, const std::filesystem::path& file,
-                                 const TextLine& line) {
+std::int64_t parseNanoseconds(std::string_view token, const std::filesystem::path& file,
+                              const TextLine& line) {
   const auto dot = token.find('.');
   const std::string_view integer_part = token.substr(0, dot);
   std::int64_t nanoseconds = 0;
@@ -81,6 +81,15 @@ double parseNanosecondsAsSeconds(std::string_view token, const std::filesystem::
     if (fraction.find_first_not_of("0123456789") != std::string_view::npos)
       badNumber(token, file, line);
   }
+  return nanoseconds;
+}
+
+double parseNanosecondsAsSeconds(std::string_view token, const std::filesystem::path& file,
+                                 const TextLine& line) {
+  return nanosecondsToSeconds(parseNanoseconds(token, file, line));
+}
+
+double nanosecondsToSeconds(std::int64_t nanoseconds) {
   // long double holds every int64 exactly, so only the final conversion rounds.
   return static_cast<double>(static_cast<long double>(nanoseconds) / 1e9L);
 }

@@ -27,8 +27,11 @@ double parseNumber(std::string_view token, const std::filesystem::path& file, co
 
 // An integer nanosecond timestamp, optionally written with a fractional part
 // ("1403715274312143104.0000000000" as in ORB-SLAM3's files); returns seconds.
+std::int64_t parseNanoseconds(std::string_view token, const std::filesystem::path& file,
+                              const TextLine& line);
 double parseNanosecondsAsSeconds(std::string_view token, const std::filesystem::path& file,
                                  const TextLine& line);
+double nanosecondsToSeconds(std::int64_t nanoseconds);
 std::int64_t secondsToNanoseconds(double seconds);
 
 }  // namespace lumaslam::io

@@ -3,9 +3,8 @@
 #include <cmath>
 #include <fstream>
 
-#include <Eigen/SVD>
-
 #include "lumaslam/core/error.h"
+#include "lumaslam/io/rotation_projection.h"
 #include "lumaslam/io/text_lines.h"
 
 namespace lumaslam::io {
@@ -29,12 +28,12 @@ Eigen::Quaterniond unitQuaternion(const Eigen::Quaterniond& q, const std::filesy
 
 Eigen::Matrix3d nearestRotation(const Eigen::Matrix3d& R, const std::filesystem::path& file,
                                 const TextLine& line) {
-  const double error = (R.transpose() * R - Eigen::Matrix3d::Identity()).norm();
-  if (error > kUnitTolerance || R.determinant() <= 0.0)
+  const auto rotation = projectToRotation(R, kUnitTolerance);
+  if (!rotation)
     fail("{}:{}: the 3x3 part is not a rotation (|R^T R - I| = {:.2e}, det = {:.4f}): '{}'",
-         file.string(), line.number, error, R.determinant(), line.text);
-  const Eigen::JacobiSVD<Eigen::Matrix3d> svd(R, Eigen::ComputeFullU | Eigen::ComputeFullV);
-  return svd.matrixU() * svd.matrixV().transpose();
+         file.string(), line.number, (R.transpose() * R - Eigen::Matrix3d::Identity()).norm(),
+         R.determinant(), line.text);
+  return *rotation;
 }
 
 SE3 makePose(const Eigen::Vector3d& t, const Eigen::Quaterniond& q) {
