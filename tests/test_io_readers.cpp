@@ -182,6 +182,13 @@ TEST_F(TumImagesTest, MissingDepthImageNamesTheFile) {
   EXPECT_ERROR_CONTAINS(reader->next(), missing.string() + ": image file not found");
 }
 
+TEST_F(TumImagesTest, EightBitDepthImageIsAnError) {
+  const fs::path depth = dir_.path() / depth_[0].file;
+  cv::imwrite(depth.string(), cv::Mat(6, 8, CV_8UC1, cv::Scalar(7)));
+  const auto reader = openDataset(spec());
+  EXPECT_ERROR_CONTAINS(reader->next(), depth.string() + ": depth image must be 16-bit");
+}
+
 // ---------------------------------------------------------------- EuRoC
 
 TEST(EurocReader, ReadsStereoMicroSequenceWithCalibration) {
@@ -392,6 +399,11 @@ TEST(FolderReader, ReadsImagesInNameOrderWithTimestamps) {
   reader->next();
   EXPECT_DOUBLE_EQ(reader->next()->timestamp, 11.0);
 
+  writeBytes(dir.path() / "short_times.txt", "1\n2\n3\n");
+  options.timestamps = dir.path() / "short_times.txt";
+  EXPECT_ERROR_CONTAINS(openDataset("folder:" + dir.path().string(), options),
+                        "short_times.txt: 3 timestamps for 4 images");
+
   writeBytes(dir.path() / "list.txt", "5.0 img_003.png\n6.0 img_001.png\n");
   options.timestamps = dir.path() / "list.txt";
   reader = openDataset("folder:" + dir.path().string(), options);
@@ -432,6 +444,10 @@ TEST(OpenDataset, BadSpecsAndFoldersGiveClearErrors) {
   writeBytes(dir.path() / "rgb.txt", "1.0 rgb/a.png\nnot-a-time rgb/b.png\n");
   EXPECT_ERROR_CONTAINS(openDataset("tum-mono:" + dir.path().string()),
                         "rgb.txt:2: bad number 'not-a-time'");
+
+  writeBytes(dir.path() / "rgb.txt", "2.0 rgb/a.png\n1.0 rgb/b.png\n");
+  EXPECT_ERROR_CONTAINS(openDataset("tum-mono:" + dir.path().string()),
+                        "rgb.txt:2: timestamp 1.0 does not increase");
 
   const fs::path fake_video = dir.path() / "fake.avi";
   writeBytes(fake_video, "RIFF this is not a video at all");

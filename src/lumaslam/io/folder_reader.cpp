@@ -36,16 +36,18 @@ FolderReader::FolderReader(std::filesystem::path folder, ReaderOptions options)
     // the folder's images in name order.
     const auto lines = readDataLines(times_file);
     const auto images = imagesInFolder(folder_);
+    const bool one_per_image =
+        !lines.empty() && splitFields(lines.front().text, " \t,").size() == 1;
+    if (one_per_image && lines.size() != images.size())
+      fail("{}: {} timestamps for {} images in {}", times_file.string(), lines.size(),
+           images.size(), folder_.string());
     for (std::size_t i = 0; i < lines.size(); ++i) {
       const auto fields = splitFields(lines[i].text, " \t,");
       const double t = fields.empty() ? 0.0 : parseNumber(fields[0], times_file, lines[i]);
       if (fields.size() == 2) {
         entries_.push_back({t, folder_ / std::string(fields[1])});
-      } else if (fields.size() == 1 && i < images.size()) {
+      } else if (fields.size() == 1 && one_per_image) {
         entries_.push_back({t, images[i]});
-      } else if (fields.size() == 1) {
-        fail("{}: {} timestamps but only {} images in {}", times_file.string(), lines.size(),
-             images.size(), folder_.string());
       } else {
         fail("{}:{}: expected 'timestamp' or 'timestamp filename', got '{}'", times_file.string(),
              lines[i].number, lines[i].text);

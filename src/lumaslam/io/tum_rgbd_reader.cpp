@@ -25,7 +25,10 @@ std::vector<ListedImage> readImageList(const std::filesystem::path& list,
     const auto fields = splitFields(line.text, " \t");
     if (fields.size() != 2)
       fail("{}:{}: expected 'timestamp filename', got '{}'", list.string(), line.number, line.text);
-    images.push_back({parseNumber(fields[0], list, line), root / std::string(fields[1])});
+    const double timestamp = parseNumber(fields[0], list, line);
+    if (!images.empty() && !(timestamp > images.back().timestamp))
+      fail("{}:{}: timestamp {} does not increase", list.string(), line.number, fields[0]);
+    images.push_back({timestamp, root / std::string(fields[1])});
   }
   if (images.empty()) fail("{}: empty sequence (no images listed)", list.string());
   return images;
@@ -41,6 +44,9 @@ std::vector<double> timestampsOf(const std::vector<ListedImage>& images) {
 
 TumRgbdReader::TumRgbdReader(std::filesystem::path root, bool with_depth, ReaderOptions options)
     : ListedFramesReader(std::move(options)), root_(std::move(root)), with_depth_(with_depth) {
+  if (!(this->options().max_association_dt > 0.0))
+    fail("{}: max association dt must be positive, got {}", root_.string(),
+         this->options().max_association_dt);
   const auto rgb = readImageList(root_ / "rgb.txt", root_);
   if (!with_depth_) {
     for (const auto& image : rgb) entries_.push_back({image.timestamp, image.file, {}});
