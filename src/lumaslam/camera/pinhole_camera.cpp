@@ -1,0 +1,75 @@
+#include "lumaslam/camera/pinhole_camera.h"
+
+#include <opencv2/calib3d.hpp>
+
+#include "lumaslam/core/error.h"
+
+namespace lumaslam::camera {
+
+PinholeCamera::PinholeCamera(double fx, double fy, double cx, double cy, io::ImageSize size,
+                             const std::array<double, 5>& distortion)
+    : fx_(fx), fy_(fy), cx_(cx), cy_(cy), size_(size), distortion_(distortion) {
+  if (!(fx > 0.0) || !(fy > 0.0))
+    fail("PinholeCamera: focal lengths must be > 0, got fx={} fy={}", fx, fy);
+  if (size.width <= 0 || size.height <= 0) {
+    fail("PinholeCamera: image size must be positive, got {}x{}", size.width, size.height);
+  }
+}
+
+PinholeCamera PinholeCamera::fromSettings(const io::CameraSettings& settings) {
+  const io::CameraSettings s = settings.atWorkingSize();
+  return PinholeCamera(s.fx, s.fy, s.cx, s.cy, s.size, s.distortion);
+}
+
+cv::Matx33d PinholeCamera::K() const {
+  return {fx_, 0.0, cx_, 0.0, fy_, cy_, 0.0, 0.0, 1.0};
+}
+
+cv::Mat PinholeCamera::distortionCoefficients() const {
+  return cv::Mat(1, 5, CV_64F, const_cast<double*>(distortion_.data())).clone();
+}
+
+bool PinholeCamera::hasDistortion() const {
+  for (const double d : distortion_) {
+    if (d != 0.0) return true;
+  }
+  return false;
+}
+
+PinholeCamera PinholeCamera::undistorted() const {
+  return PinholeCamera(fx_, fy_, cx_, cy_, size_);
+}
+
+std::vector<cv::Point2f> PinholeCamera::undistortPoints(const std::vector<cv::Point2f>& raw) const {
+  if (!hasDistortion() || raw.empty()) return raw;
+  std::vector<cv::Point2f> ideal;
+  // OpenCV's default of 5 fixed-point iterations leaves pixel-level errors at the corners of
+  // EuRoC-like lenses (k1 = -0.28); iterate until converged instead.
+  cv::undistortPoints(raw, ideal, K(), distortionCoefficients(), cv::noArray(), K(),
+                      cv::TermCriteria(cv::TermCriteria::COUNT | cv::TermCriteria::EPS, 100, 1e-4));
+  return ideal;
+}
+
+std::vector<cv::KeyPoint> PinholeCamera::undistortKeypoints(
+    const std::vector<cv::KeyPoint>& raw) const {
+  if (!hasDistortion()) return raw;
+  std::vector<cv::Point2f> points;
+  cv::KeyPoint::convert(raw, points);
+  const auto ideal = undistortPoints(points);
+  std::vector<cv::KeyPoint> out = raw;
+  for (std::size_t i = 0; i < out.size(); ++i) out[i].pt = ideal[i];
+  return out;
+}
+
+std::vector<cv::Point2f> PinholeCamera::distortPoints(const std::vector<cv::Point2f>& ideal) const {
+  if (!hasDistortion() || ideal.empty()) return ideal;
+  std::vector<cv::Point3d> rays;
+  rays.reserve(ideal.size());
+  for (const auto& p : ideal) rays.emplace_back((p.x - cx_) / fx_, (p.y - cy_) / fy_, 1.0);
+  std::vector<cv::Point2d> raw;
+  cv::projectPoints(rays, cv::Vec3d::zeros(), cv::Vec3d::zeros(), K(), distortionCoefficients(),
+                    raw);
+  return {raw.begin(), raw.end()};
+}
+
+}  // namespace lumaslam::camera
