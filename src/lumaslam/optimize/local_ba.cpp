@@ -1,38 +1,22 @@
 #include "lumaslam/optimize/local_ba.h"
 
+#include <algorithm>
 #include <memory>
 #include <unordered_map>
 
-#include <ceres/iteration_callback.h>
 #include <ceres/loss_function.h>
 #include <ceres/ordered_groups.h>
 #include <ceres/problem.h>
 #include <ceres/solver.h>
 
 #include "lumaslam/core/error.h"
+#include "lumaslam/optimize/abort_callback.h"
 #include "lumaslam/optimize/reprojection_cost.h"
 #include "lumaslam/optimize/se3_parameter.h"
 
 namespace lumaslam::optimize {
 
 namespace {
-
-class AbortCallback final : public ceres::IterationCallback {
- public:
-  explicit AbortCallback(const std::atomic<bool>* abort) : abort_(abort) {}
-  ceres::CallbackReturnType operator()(const ceres::IterationSummary& /*summary*/) override {
-    if (abort_->load(std::memory_order_relaxed)) {
-      aborted_ = true;
-      return ceres::SOLVER_TERMINATE_SUCCESSFULLY;
-    }
-    return ceres::SOLVER_CONTINUE;
-  }
-  bool aborted() const { return aborted_; }
-
- private:
-  const std::atomic<bool>* abort_;
-  bool aborted_ = false;
-};
 
 std::unordered_map<std::uint64_t, int> indexById(const auto& items, const char* what) {
   std::unordered_map<std::uint64_t, int> index;
@@ -115,8 +99,10 @@ LocalBAResult optimizeLocalBundle(const LocalBAProblem& problem, const LocalBAOp
     return result;
   }
 
-  ceres::HuberLoss huberMono(options.thresholds.huberDeltaMono());
-  ceres::HuberLoss huberStereo(options.thresholds.huberDeltaStereo());
+  ceres::LossFunctionWrapper lossMono(new ceres::HuberLoss(options.thresholds.huberDeltaMono()),
+                                      ceres::TAKE_OWNERSHIP);
+  ceres::LossFunctionWrapper lossStereo(new ceres::HuberLoss(options.thresholds.huberDeltaStereo()),
+                                        ceres::TAKE_OWNERSHIP);
   ceres::Problem::Options problemOptions;
   problemOptions.loss_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
   problemOptions.manifold_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
@@ -132,32 +118,56 @@ LocalBAResult optimizeLocalBundle(const LocalBAProblem& problem, const LocalBAOp
     ceresProblem.AddParameterBlock(point.data(), 3);
     ordering->AddElementToGroup(point.data(), 0);  // eliminated first (Schur)
   }
-  std::vector<int> residualsPerPoint(points.size(), 0);
+  // Non-owning: the problem owns the costs; the refinement stage disables the outliers'.
+  std::vector<BundleReprojectionCost<2>*> monoCosts(observations.size(), nullptr);
+  std::vector<BundleReprojectionCost<3>*> stereoCosts(observations.size(), nullptr);
   for (std::size_t i = 0; i < observations.size(); ++i) {
     const BAObservation& obs = observations[i];
     double* pose = poses[resolved[i].keyFrame].data();
     double* point = points[resolved[i].point].data();
     // Skip observations that cannot be projected at the start; they are classified below.
     if (!((fromPoseBlock(pose) * points[resolved[i].point]).z() > kMinProjectionDepth)) continue;
-    ++residualsPerPoint[resolved[i].point];
     if (obs.isStereo()) {
-      ceresProblem.AddResidualBlock(
-          new BundleReprojectionCost<3>(problem.camera, {obs.uv.x(), obs.uv.y(), obs.uRight},
-                                        obs.invSigma2),
-          &huberStereo, pose, point);
+      stereoCosts[i] = new BundleReprojectionCost<3>(
+          problem.camera, {obs.uv.x(), obs.uv.y(), obs.uRight}, obs.invSigma2);
+      ceresProblem.AddResidualBlock(stereoCosts[i], &lossStereo, pose, point);
     } else {
-      ceresProblem.AddResidualBlock(
-          new BundleReprojectionCost<2>(problem.camera, obs.uv, obs.invSigma2), &huberMono, pose,
-          point);
+      monoCosts[i] = new BundleReprojectionCost<2>(problem.camera, obs.uv, obs.invSigma2);
+      ceresProblem.AddResidualBlock(monoCosts[i], &lossMono, pose, point);
     }
   }
-  // Points without any usable observation would make the system singular.
-  for (std::size_t j = 0; j < points.size(); ++j) {
-    if (residualsPerPoint[j] == 0) {
-      ceresProblem.RemoveParameterBlock(points[j].data());
-      ordering->Remove(points[j].data());
+  // Points without any active observation would make the system singular: hold them fixed.
+  const auto fixUnobservedPoints = [&] {
+    std::vector<int> active(points.size(), 0);
+    for (std::size_t i = 0; i < observations.size(); ++i) {
+      if ((monoCosts[i] || stereoCosts[i]) && !result.isOutlier[i]) ++active[resolved[i].point];
     }
+    for (std::size_t j = 0; j < points.size(); ++j) {
+      if (active[j] == 0) ceresProblem.SetParameterBlockConstant(points[j].data());
+    }
+  };
+  const auto classify = [&] {
+    fillResult();
+    result.numOutliers = 0;
+    for (std::size_t i = 0; i < observations.size(); ++i) {
+      const BAObservation& obs = observations[i];
+      const Eigen::Vector3d P_c =
+          result.T_c_w[resolved[i].keyFrame] * result.X_w[resolved[i].point];
+      const double chi2 =
+          obs.isStereo() ? reprojectionChi2<3>(problem.camera, P_c,
+                                               {obs.uv.x(), obs.uv.y(), obs.uRight}, obs.invSigma2)
+                         : reprojectionChi2<2>(problem.camera, P_c, obs.uv, obs.invSigma2);
+      const double threshold =
+          obs.isStereo() ? options.thresholds.chi2Stereo : options.thresholds.chi2Mono;
+      result.isOutlier[i] = !(chi2 <= threshold);
+      if (result.isOutlier[i]) ++result.numOutliers;
+    }
+  };
+  if (ceresProblem.NumResidualBlocks() == 0) {
+    classify();
+    return result;
   }
+  fixUnobservedPoints();
 
   ceres::Solver::Options solverOptions;
   solverOptions.linear_solver_type = linearSolverOf(options.solver);
@@ -173,28 +183,36 @@ LocalBAResult optimizeLocalBundle(const LocalBAProblem& problem, const LocalBAOp
     abortCallback = std::make_unique<AbortCallback>(options.abort);
     solverOptions.callbacks.push_back(abortCallback.get());
   }
+  // summary.iterations includes the initial evaluation (iteration 0).
+  const auto iterationsOf = [](const ceres::Solver::Summary& summary) {
+    return std::max(0, static_cast<int>(summary.iterations.size()) - 1);
+  };
 
-  if (ceresProblem.NumResidualBlocks() > 0) {
-    ceres::Solver::Summary summary;
-    ceres::Solve(solverOptions, &ceresProblem, &summary);
-    result.iterations = summary.num_successful_steps + summary.num_unsuccessful_steps;
-    result.initialCost = summary.initial_cost;
-    result.finalCost = summary.final_cost;
+  ceres::Solver::Summary summary;
+  ceres::Solve(solverOptions, &ceresProblem, &summary);
+  result.iterations = iterationsOf(summary);
+  result.initialCost = summary.initial_cost;
+  result.finalCost = summary.final_cost;
+  result.aborted = abortCallback && abortCallback->aborted();
+  classify();
+
+  const double timeLeft = options.maxSolverTimeSeconds - summary.total_time_in_seconds;
+  if (options.refinementIterations > 0 && !result.aborted && timeLeft > 0.0) {
+    // ORB-SLAM2's second stage: without the outliers, without the robust kernel.
+    for (std::size_t i = 0; i < observations.size(); ++i) {
+      if (monoCosts[i]) monoCosts[i]->setEnabled(!result.isOutlier[i]);
+      if (stereoCosts[i]) stereoCosts[i]->setEnabled(!result.isOutlier[i]);
+    }
+    fixUnobservedPoints();
+    lossMono.Reset(nullptr, ceres::TAKE_OWNERSHIP);
+    lossStereo.Reset(nullptr, ceres::TAKE_OWNERSHIP);
+    solverOptions.max_num_iterations = options.refinementIterations;
+    solverOptions.max_solver_time_in_seconds = timeLeft;
+    ceres::Solver::Summary refinement;
+    ceres::Solve(solverOptions, &ceresProblem, &refinement);
+    result.iterations += iterationsOf(refinement);
     result.aborted = abortCallback && abortCallback->aborted();
-  }
-  fillResult();
-
-  for (std::size_t i = 0; i < observations.size(); ++i) {
-    const BAObservation& obs = observations[i];
-    const Eigen::Vector3d P_c = result.T_c_w[resolved[i].keyFrame] * result.X_w[resolved[i].point];
-    const double chi2 =
-        obs.isStereo() ? reprojectionChi2<3>(problem.camera, P_c,
-                                             {obs.uv.x(), obs.uv.y(), obs.uRight}, obs.invSigma2)
-                       : reprojectionChi2<2>(problem.camera, P_c, obs.uv, obs.invSigma2);
-    const double threshold =
-        obs.isStereo() ? options.thresholds.chi2Stereo : options.thresholds.chi2Mono;
-    result.isOutlier[i] = !(chi2 <= threshold);
-    if (result.isOutlier[i]) ++result.numOutliers;
+    classify();
   }
   return result;
 }

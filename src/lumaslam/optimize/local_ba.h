@@ -47,8 +47,11 @@ struct LocalBAProblem {
 enum class SchurSolver { kSparse, kIterative, kDense };
 
 struct LocalBAOptions {
-  int maxIterations = 10;
-  double maxSolverTimeSeconds = 1e6;  // wall-clock budget of the solve
+  int maxIterations = 10;  // robust (Huber) stage over all observations
+  // Second stage as in ORB-SLAM2: the first stage's chi-square outliers are excluded and the
+  // kernel dropped for this many more iterations (0 = ORB-SLAM3's single stage).
+  int refinementIterations = 10;
+  double maxSolverTimeSeconds = 1e6;  // wall-clock budget of both stages together
   // Set by the mapper (another thread) to stop early: checked before the solve and after every
   // iteration; the best state reached so far is returned.
   const std::atomic<bool>* abort = nullptr;

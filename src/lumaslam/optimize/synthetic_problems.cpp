@@ -119,11 +119,16 @@ SyntheticBundle makeSyntheticBundle(const SyntheticBundleSpec& spec) {
     T_w_c.translation() = Eigen::Vector3d(0.2 * k, 0.05 * std::sin(0.5 * k), 0.0);
     out.T_c_w_true.push_back(T_w_c.inverse());
   }
-  // Points in a slab 3..9 m in front of the path, wide enough to be seen by most keyframes.
+  // Points in a slab 3..9 m in front of the path, kept if enough keyframes see them.
   const double pathLength = 0.2 * (spec.numKeyFrames - 1);
-  for (int j = 0; j < spec.numPoints; ++j) {
-    out.X_w_true.emplace_back(-2.5 + (pathLength + 5.0) * unit(rng), -1.8 + 3.6 * unit(rng),
+  const int minObservations = std::min(spec.minObservations, spec.numKeyFrames);
+  while (static_cast<int>(out.X_w_true.size()) < spec.numPoints) {
+    const Eigen::Vector3d X_w(-2.5 + (pathLength + 5.0) * unit(rng), -1.8 + 3.6 * unit(rng),
                               3.0 + 6.0 * unit(rng));
+    int seenBy = 0;
+    for (const SE3& T_c_w : out.T_c_w_true)
+      seenBy += projectsIntoImage(problem.camera, T_c_w * X_w);
+    if (seenBy >= minObservations) out.X_w_true.push_back(X_w);
   }
 
   for (int k = 0; k < spec.numKeyFrames; ++k) {

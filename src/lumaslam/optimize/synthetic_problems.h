@@ -47,6 +47,7 @@ struct SyntheticBundleSpec {
   int numKeyFrames = 10;
   int numPoints = 500;
   int numFixedKeyFrames = 2;  // the first ones along the path, left at the ground truth
+  int minObservations = 3;    // points are drawn until each is seen by this many keyframes
   bool stereo = false;
   SyntheticNoise noise{.outlierRatio = 0.05};
   double poseTranslationError = 0.05;  // [m] on the free keyframes
