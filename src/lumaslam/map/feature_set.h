@@ -1,9 +1,12 @@
 #pragma once
 // The features of one frame as tracking hands them to a keyframe. Immutable once a keyframe
 // holds it (shared, read without locks).
+#include <memory>
 #include <vector>
 
 #include <opencv2/core.hpp>
+
+#include "lumaslam/feature/feature_grid.h"
 
 namespace lumaslam::map {
 
@@ -13,6 +16,9 @@ struct FeatureSet {
   std::vector<float> u_right;            // stereo / virtual-stereo right u; < 0 if none
   std::vector<float> depth;              // metres; < 0 if none
   cv::Mat descriptors;                   // N x 32, CV_8U
+  // Undistorted keypoints bucketed for window queries (projection search, fusion); may be
+  // null for feature sets built by hand in tests.
+  std::shared_ptr<const feature::FeatureGrid> grid;
 
   std::size_t size() const { return keypoints.size(); }
   bool hasStereo(std::size_t i) const { return i < u_right.size() && u_right[i] >= 0.0F; }

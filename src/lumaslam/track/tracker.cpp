@@ -1,0 +1,494 @@
+#include "lumaslam/track/tracker.h"
+
+#include <algorithm>
+#include <map>
+#include <numeric>
+#include <unordered_set>
+
+#include <spdlog/spdlog.h>
+
+#include "lumaslam/feature/projection_matcher.h"
+#include "lumaslam/optimize/pose_only.h"
+
+namespace lumaslam::track {
+
+const char* toString(TrackingState state) {
+  switch (state) {
+    case TrackingState::NotInitialized:
+      return "not initialized";
+    case TrackingState::Ok:
+      return "ok";
+    case TrackingState::Lost:
+      return "lost";
+  }
+  return "?";
+}
+
+Tracker::Tracker(std::shared_ptr<map::Map> map, KeyFrameSink& mapper, const FrameCamera& camera,
+                 std::shared_ptr<const map::ScalePyramid> pyramid, feature::ScaleLevels levels,
+                 const TrackerParams& params)
+    : map_(std::move(map)),
+      mapper_(mapper),
+      camera_(camera),
+      pyramid_(std::move(pyramid)),
+      levels_(std::move(levels)),
+      params_(params),
+      bounds_(camera.undistortedBounds()) {}
+
+TrackingOutcome Tracker::track(Frame frame) {
+  std::lock_guard map_lock(map_->updateMutex());
+  current_ = std::move(frame);
+  TrackingOutcome outcome;
+  const TrackingState previous = state_;
+
+  bool ok = false;
+  if (state_ == TrackingState::NotInitialized) {
+    ok = initialize();
+    outcome.new_keyframe = ok;
+  } else {
+    updateLastFrame();
+    if (state_ == TrackingState::Ok) {
+      ok = (velocity_ && trackWithMotionModel()) ||
+           (last_.T_c_w && trackFromPose(*last_.T_c_w, params_.motion_search_radius * 2.0F));
+    } else if (last_.T_c_w) {
+      // Lost: look for the map around the last pose we had (short blackouts, fast motion).
+      ok = trackFromPose(*last_.T_c_w, params_.lost_search_radius);
+    }
+    if (ok) ok = trackLocalMap();
+    if (state_ != TrackingState::NotInitialized)
+      state_ = ok ? TrackingState::Ok : TrackingState::Lost;
+    if (ok && needNewKeyFrame()) {
+      createNewKeyFrame();
+      outcome.new_keyframe = true;
+    }
+  }
+
+  if (ok) {
+    if (last_.T_c_w && previous == TrackingState::Ok) {
+      velocity_ = *current_.T_c_w * last_.T_c_w->inverse();
+    } else {
+      velocity_.reset();
+    }
+    if (state_ == TrackingState::NotInitialized) state_ = TrackingState::Ok;
+    for (std::size_t i = 0; i < current_.size(); ++i) {
+      if (current_.outliers[i]) current_.points[i] = nullptr;
+    }
+    if (!current_.reference) current_.reference = reference_;
+    recorder_.recordTracked(current_.timestamp, *current_.T_c_w, current_.reference);
+    last_T_l_r_ = *current_.T_c_w * current_.reference->T_w_c();
+    outcome.T_w_c = current_.T_c_w->inverse();
+  } else {
+    if (previous == TrackingState::Ok) {
+      spdlog::warn("tracking lost at frame {} (t = {:.3f} s): {} inliers", current_.index,
+                   current_.timestamp, inliers_);
+    }
+    velocity_.reset();
+    recorder_.recordLost(current_.timestamp);
+    current_.T_c_w.reset();
+  }
+  if (ok && previous == TrackingState::Lost) {
+    spdlog::info("tracking recovered at frame {} (t = {:.3f} s)", current_.index,
+                 current_.timestamp);
+  }
+  outcome.state = state_;
+  outcome.inliers = inliers_;
+  // Keep the last pose we had while lost, as the prior for recovery.
+  if (!ok && last_.T_c_w) {
+    const auto prior = last_.T_c_w;
+    const auto reference = last_.reference;
+    last_ = std::move(current_);
+    last_.T_c_w = prior;
+    last_.reference = reference;
+    last_.clearMatches();
+  } else {
+    last_ = std::move(current_);
+  }
+  return outcome;
+}
+
+std::shared_ptr<map::MapPoint> Tracker::newPointFromDepth(
+    std::size_t i, const std::shared_ptr<map::KeyFrame>& kf) {
+  const Eigen::Vector3d X_c = current_.unprojectCamera(i, camera_.intrinsics());
+  const Eigen::Vector3d X_w = current_.T_c_w->inverse() * X_c;
+  auto point = std::make_shared<map::MapPoint>(map_->nextMapPointId(), X_w, kf);
+  point->addObservation(kf, static_cast<int>(i));
+  kf->setMapPoint(i, point);
+  point->computeDistinctiveDescriptor();
+  point->updateNormalAndDepth();
+  map_->addMapPoint(point);
+  current_.points[i] = point;
+  return point;
+}
+
+bool Tracker::initialize() {
+  const auto& depth = current_.features->depth;
+  const auto with_depth = std::count_if(depth.begin(), depth.end(), [](float z) { return z > 0; });
+  if (with_depth < params_.min_initial_features) {
+    spdlog::debug("frame {}: {} features with depth, need {} to initialise", current_.index,
+                  with_depth, params_.min_initial_features);
+    return false;
+  }
+  current_.T_c_w = SE3::Identity();
+  auto kf = std::make_shared<map::KeyFrame>(map_->nextKeyFrameId(), current_.index,
+                                            current_.timestamp, *current_.T_c_w, current_.features,
+                                            pyramid_, camera_.intrinsics());
+  map_->addKeyFrame(kf);
+  for (std::size_t i = 0; i < current_.size(); ++i) {
+    if (depth[i] > 0) newPointFromDepth(i, kf);
+  }
+  spdlog::info("map initialised at frame {} with {} points", current_.index, map_->mapPointCount());
+  mapper_.insertKeyFrame(kf);
+  reference_ = last_keyframe_ = kf;
+  last_keyframe_frame_ = current_.index;
+  current_.reference = kf;
+  local_keyframes_ = {kf};
+  inliers_ = static_cast<int>(with_depth);
+  return true;
+}
+
+void Tracker::updateLastFrame() {
+  temporary_points_.clear();
+  if (!last_.T_c_w || !last_.reference) return;
+  // The reference keyframe may have moved in bundle adjustment since: follow it.
+  if (!last_.reference->isBad()) last_.T_c_w = last_T_l_r_ * last_.reference->T_c_w();
+  if (state_ != TrackingState::Ok) return;
+  // Visual-odometry points: the last frame's close depth measurements that have no map
+  // point help the motion-model search (ORB-SLAM's UpdateLastFrame for RGB-D / stereo).
+  std::vector<std::pair<float, std::size_t>> by_depth;
+  for (std::size_t i = 0; i < last_.size(); ++i) {
+    if (last_.features->depth[i] > 0) by_depth.emplace_back(last_.features->depth[i], i);
+  }
+  std::sort(by_depth.begin(), by_depth.end());
+  const SE3 T_w_l = last_.T_c_w->inverse();
+  int count = 0;
+  for (const auto& [z, i] : by_depth) {
+    const auto& point = last_.points[i];
+    if (!point || point->observationCount() < 1) {
+      const Eigen::Vector3d X_w = T_w_l * last_.unprojectCamera(i, camera_.intrinsics());
+      auto temporary = std::make_shared<map::MapPoint>(0, X_w, nullptr);
+      last_.points[i] = temporary;
+      temporary_points_.push_back(std::move(temporary));
+    }
+    if (++count > 100 && z > camera_.close_depth) break;
+  }
+}
+
+int Tracker::searchLastFrame(float radius) {
+  std::vector<feature::ProjectedPoint> projected;
+  std::vector<std::size_t> source;
+  const SE3& T_c_w = *current_.T_c_w;
+  for (std::size_t i = 0; i < last_.size(); ++i) {
+    const auto& point = last_.points[i];
+    if (!point || last_.outliers[i]) continue;
+    const Eigen::Vector3d X_c = T_c_w * point->position();
+    if (X_c.z() <= 0) continue;
+    const cv::Point2f uv(static_cast<float>(camera_.fx * X_c.x() / X_c.z() + camera_.cx),
+                         static_cast<float>(camera_.fy * X_c.y() / X_c.z() + camera_.cy));
+    if (!bounds_.contains(uv)) continue;
+    const auto& kp = last_.features->keypoints[i];
+    feature::ProjectedPoint p;
+    p.uv = uv;
+    p.predictedLevel = kp.octave;
+    p.descriptor = feature::descriptorAt(last_.features->descriptors, static_cast<int>(i));
+    p.angle = kp.angle;
+    projected.push_back(p);
+    source.push_back(i);
+  }
+  feature::ProjectionSearchOptions options;
+  options.radius = radius;
+  options.ratio = 1.0F;
+  options.checkRotation = true;
+  const auto matches = feature::matchByProjection(projected, *current_.features->grid,
+                                                  current_.features->descriptors, levels_, options);
+  for (const auto& m : matches) {
+    current_.points[static_cast<std::size_t>(m.trainIdx)] =
+        last_.points[source[static_cast<std::size_t>(m.queryIdx)]];
+  }
+  return static_cast<int>(matches.size());
+}
+
+int Tracker::optimizeCurrentPose() {
+  optimize::PoseOnlyProblem problem;
+  problem.camera = camera_.optimizerIntrinsics();
+  problem.T_c_w = *current_.T_c_w;
+  std::vector<std::size_t> feature_of;
+  for (std::size_t i = 0; i < current_.size(); ++i) {
+    const auto& point = current_.points[i];
+    if (!point) continue;
+    optimize::PoseObservation obs;
+    obs.X_w = point->position();
+    const auto& uv = current_.features->undistorted[i];
+    obs.uv = {uv.x, uv.y};
+    obs.uRight = current_.features->u_right[i];
+    const int octave = std::clamp(current_.features->keypoints[i].octave, 0, pyramid_->levels - 1);
+    obs.invSigma2 = pyramid_->inv_sigma2[static_cast<std::size_t>(octave)];
+    problem.observations.push_back(obs);
+    feature_of.push_back(i);
+  }
+  const auto result = optimize::optimizePose(problem);
+  if (!result.success) return 0;
+  current_.T_c_w = result.T_c_w;
+  for (std::size_t k = 0; k < feature_of.size(); ++k) {
+    current_.outliers[feature_of[k]] = result.isOutlier[k];
+  }
+  return result.numInliers;
+}
+
+// Drops outlier matches; returns the number of remaining matches to real map points.
+int Tracker::discardOutliers() {
+  int in_map = 0;
+  for (std::size_t i = 0; i < current_.size(); ++i) {
+    if (!current_.points[i]) continue;
+    if (current_.outliers[i]) {
+      current_.points[i] = nullptr;
+      current_.outliers[i] = false;
+    } else if (current_.points[i]->observationCount() > 0) {
+      ++in_map;
+    }
+  }
+  return in_map;
+}
+
+bool Tracker::trackWithMotionModel() {
+  current_.T_c_w = *velocity_ * *last_.T_c_w;
+  current_.clearMatches();
+  int matches = searchLastFrame(params_.motion_search_radius);
+  if (matches < 20) {
+    current_.clearMatches();
+    matches = searchLastFrame(2.0F * params_.motion_search_radius);
+  }
+  if (matches < 20) return false;
+  if (optimizeCurrentPose() == 0) return false;
+  return discardOutliers() >= 10;
+}
+
+// Projection search of the reference keyframe's and last frame's points from a pose prior
+// with a wide window: the fallback when the motion model fails, and recovery when lost.
+int Tracker::searchReferencePoints(float radius) {
+  std::vector<feature::ProjectedPoint> projected;
+  std::vector<std::shared_ptr<map::MapPoint>> source;
+  std::unordered_set<map::Id> seen;
+  const SE3& T_c_w = *current_.T_c_w;
+  const Eigen::Vector3d center = T_c_w.inverse().translation();
+  auto consider = [&](const std::shared_ptr<map::MapPoint>& point) {
+    if (!point || point->isBad() || point->observationCount() < 1) return;
+    if (!seen.insert(point->id()).second) return;
+    const Eigen::Vector3d X_w = point->position();
+    const Eigen::Vector3d X_c = T_c_w * X_w;
+    if (X_c.z() <= 0) return;
+    const cv::Point2f uv(static_cast<float>(camera_.fx * X_c.x() / X_c.z() + camera_.cx),
+                         static_cast<float>(camera_.fy * X_c.y() / X_c.z() + camera_.cy));
+    if (!bounds_.contains(uv)) return;
+    feature::ProjectedPoint p;
+    p.uv = uv;
+    p.predictedLevel = point->predictScale((X_w - center).norm(), *pyramid_);
+    p.descriptor = point->descriptor();
+    projected.push_back(p);
+    source.push_back(point);
+  };
+  if (reference_) {
+    for (const auto& point : reference_->mapPoints()) consider(point);
+    for (const auto& kf : reference_->covisibles(5)) {
+      for (const auto& point : kf->mapPoints()) consider(point);
+    }
+  }
+  feature::ProjectionSearchOptions options;
+  options.radius = radius;
+  options.ratio = 0.8F;
+  options.levelsBelow = 2;
+  options.levelsAbove = 2;
+  const auto matches = feature::matchByProjection(projected, *current_.features->grid,
+                                                  current_.features->descriptors, levels_, options);
+  for (const auto& m : matches) {
+    current_.points[static_cast<std::size_t>(m.trainIdx)] =
+        source[static_cast<std::size_t>(m.queryIdx)];
+  }
+  return static_cast<int>(matches.size());
+}
+
+bool Tracker::trackFromPose(const SE3& T_c_w_prior, float radius) {
+  current_.T_c_w = T_c_w_prior;
+  current_.clearMatches();
+  if (searchReferencePoints(radius) < 15) return false;
+  if (optimizeCurrentPose() == 0) return false;
+  return discardOutliers() >= 10;
+}
+
+void Tracker::updateLocalMap() {
+  // Keyframes that see the current matches, weighted by how many they see.
+  std::map<map::Id, std::pair<std::shared_ptr<map::KeyFrame>, int>> counts;
+  for (std::size_t i = 0; i < current_.size(); ++i) {
+    const auto& point = current_.points[i];
+    if (!point || point->isBad()) continue;
+    for (const auto& [kf, index] : point->observations()) {
+      auto& entry = counts[kf->id()];
+      entry.first = kf;
+      ++entry.second;
+    }
+  }
+  if (counts.empty()) return;
+  local_keyframes_.clear();
+  std::unordered_set<map::Id> in_local;
+  std::shared_ptr<map::KeyFrame> best;
+  int best_count = 0;
+  for (const auto& [id, entry] : counts) {
+    if (entry.first->isBad()) continue;
+    if (entry.second > best_count) {
+      best_count = entry.second;
+      best = entry.first;
+    }
+    local_keyframes_.push_back(entry.first);
+    in_local.insert(id);
+  }
+  const auto max_local = static_cast<std::size_t>(params_.max_local_keyframes);
+  const auto first_ring = local_keyframes_;
+  for (const auto& kf : first_ring) {
+    if (local_keyframes_.size() >= max_local) break;
+    auto add = [&](const std::shared_ptr<map::KeyFrame>& other) {
+      if (other && !other->isBad() && in_local.insert(other->id()).second) {
+        local_keyframes_.push_back(other);
+      }
+    };
+    for (const auto& neighbour : kf->covisibles(10)) add(neighbour);
+    for (const auto& child : kf->children()) add(child);
+    add(kf->parent());
+  }
+  if (best) {
+    reference_ = best;
+    current_.reference = best;
+  }
+  local_points_.clear();
+  std::unordered_set<map::Id> seen;
+  for (const auto& kf : local_keyframes_) {
+    for (const auto& point : kf->mapPoints()) {
+      if (point && !point->isBad() && seen.insert(point->id()).second)
+        local_points_.push_back(point);
+    }
+  }
+}
+
+int Tracker::searchLocalPoints() {
+  std::unordered_set<map::Id> matched;
+  for (const auto& point : current_.points) {
+    if (point) {
+      point->increaseVisible();
+      matched.insert(point->id());
+    }
+  }
+  const SE3& T_c_w = *current_.T_c_w;
+  const Eigen::Vector3d center = T_c_w.inverse().translation();
+  std::vector<feature::ProjectedPoint> projected;
+  std::vector<std::shared_ptr<map::MapPoint>> source;
+  for (const auto& point : local_points_) {
+    if (matched.count(point->id()) || point->isBad()) continue;
+    const Eigen::Vector3d X_w = point->position();
+    const Eigen::Vector3d X_c = T_c_w * X_w;
+    if (X_c.z() <= 0) continue;
+    const cv::Point2f uv(static_cast<float>(camera_.fx * X_c.x() / X_c.z() + camera_.cx),
+                         static_cast<float>(camera_.fy * X_c.y() / X_c.z() + camera_.cy));
+    if (!bounds_.contains(uv)) continue;
+    // ORB-SLAM's isInFrustum: inside the scale-invariance range and seen from within 60 deg.
+    const Eigen::Vector3d ray = X_w - center;
+    const double distance = ray.norm();
+    if (distance < point->minDistance() || distance > point->maxDistance()) continue;
+    if (ray.dot(point->normal()) < 0.5 * distance) continue;
+    point->increaseVisible();
+    feature::ProjectedPoint p;
+    p.uv = uv;
+    p.predictedLevel = point->predictScale(distance, *pyramid_);
+    p.descriptor = point->descriptor();
+    projected.push_back(p);
+    source.push_back(point);
+  }
+  feature::ProjectionSearchOptions options;
+  options.radius = params_.local_map_search_radius;
+  options.ratio = 0.8F;
+  options.levelsBelow = 1;
+  options.levelsAbove = 0;
+  const auto matches = feature::matchByProjection(projected, *current_.features->grid,
+                                                  current_.features->descriptors, levels_, options);
+  int added = 0;
+  for (const auto& m : matches) {
+    auto& slot = current_.points[static_cast<std::size_t>(m.trainIdx)];
+    if (slot) continue;
+    slot = source[static_cast<std::size_t>(m.queryIdx)];
+    ++added;
+  }
+  return added;
+}
+
+bool Tracker::trackLocalMap() {
+  updateLocalMap();
+  searchLocalPoints();
+  optimizeCurrentPose();
+  inliers_ = 0;
+  for (std::size_t i = 0; i < current_.size(); ++i) {
+    const auto& point = current_.points[i];
+    if (!point || current_.outliers[i]) continue;
+    point->increaseFound();
+    if (point->observationCount() > 0) ++inliers_;
+  }
+  return inliers_ >= params_.min_local_map_inliers;
+}
+
+bool Tracker::needNewKeyFrame() const {
+  const std::size_t keyframes = map_->keyFrameCount();
+  const int min_observations = keyframes <= 2 ? 2 : 3;
+  const int reference_matches = reference_ ? reference_->trackedMapPoints(min_observations) : 0;
+  const bool mapper_idle = mapper_.acceptsKeyFrames();
+
+  int tracked_close = 0;
+  int untracked_close = 0;
+  for (std::size_t i = 0; i < current_.size(); ++i) {
+    const float z = current_.features->depth[i];
+    if (z <= 0 || z >= camera_.close_depth) continue;
+    if (current_.points[i] && !current_.outliers[i]) {
+      ++tracked_close;
+    } else {
+      ++untracked_close;
+    }
+  }
+  const bool need_close = tracked_close < 100 && untracked_close > 70;
+  const double ratio = keyframes < 2 ? 0.4 : 0.75;
+  const std::size_t since = current_.index - last_keyframe_frame_;
+  const bool c1a = since >= static_cast<std::size_t>(params_.max_frames_between_keyframes);
+  const bool c1b =
+      since >= static_cast<std::size_t>(params_.min_frames_between_keyframes) && mapper_idle;
+  const bool c1c = inliers_ < reference_matches * 0.25 || need_close;
+  const bool c2 = (inliers_ < reference_matches * ratio || need_close) && inliers_ > 15;
+  if (!((c1a || c1b || c1c) && c2)) return false;
+  if (mapper_idle) return true;
+  mapper_.interruptBundleAdjustment();
+  return mapper_.queuedKeyFrames() < 3;
+}
+
+void Tracker::createNewKeyFrame() {
+  auto kf = std::make_shared<map::KeyFrame>(map_->nextKeyFrameId(), current_.index,
+                                            current_.timestamp, *current_.T_c_w, current_.features,
+                                            pyramid_, camera_.intrinsics());
+  for (std::size_t i = 0; i < current_.size(); ++i) {
+    const auto& point = current_.points[i];
+    if (point && !current_.outliers[i] && point->observationCount() > 0) kf->setMapPoint(i, point);
+  }
+  // New close points from depth, nearest first (ORB-SLAM's CreateNewKeyFrame for RGB-D).
+  std::vector<std::pair<float, std::size_t>> by_depth;
+  for (std::size_t i = 0; i < current_.size(); ++i) {
+    if (current_.features->depth[i] > 0) by_depth.emplace_back(current_.features->depth[i], i);
+  }
+  std::sort(by_depth.begin(), by_depth.end());
+  int count = 0;
+  for (const auto& [z, i] : by_depth) {
+    const auto& point = current_.points[i];
+    if (!point || point->observationCount() < 1 || current_.outliers[i]) {
+      current_.outliers[i] = false;
+      newPointFromDepth(i, kf);
+    }
+    if (++count > 100 && z > camera_.close_depth) break;
+  }
+  mapper_.insertKeyFrame(kf);
+  reference_ = last_keyframe_ = kf;
+  current_.reference = kf;
+  last_keyframe_frame_ = current_.index;
+}
+
+}  // namespace lumaslam::track

@@ -1,0 +1,93 @@
+#pragma once
+// ORB-SLAM-style tracking for RGB-D and stereo (monocular initialisation comes later):
+// constant-velocity motion model with projection search, reference-keyframe fallback,
+// local-map tracking, pose-only optimisation, keyframe decision. Runs in the caller's thread;
+// holds Map::updateMutex() for one frame at a time.
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include "lumaslam/feature/scale_levels.h"
+#include "lumaslam/map/map.h"
+#include "lumaslam/track/frame.h"
+#include "lumaslam/track/frame_camera.h"
+#include "lumaslam/track/keyframe_sink.h"
+#include "lumaslam/track/trajectory_recorder.h"
+
+namespace lumaslam::track {
+
+enum class TrackingState { NotInitialized, Ok, Lost };
+const char* toString(TrackingState state);
+
+struct TrackerParams {
+  int min_initial_features = 500;         // features with depth needed to start a map
+  int max_frames_between_keyframes = 30;  // camera fps, as ORB-SLAM
+  int min_frames_between_keyframes = 0;
+  int min_local_map_inliers = 30;
+  float motion_search_radius = 7.0F;  // pixels at level 0 (doubled on a second try)
+  float local_map_search_radius = 8.0F;
+  float lost_search_radius = 40.0F;  // window when trying to recover from the last pose
+  int max_local_keyframes = 80;
+};
+
+struct TrackingOutcome {
+  TrackingState state = TrackingState::NotInitialized;
+  std::optional<SE3> T_w_c;  // set when tracked
+  int inliers = 0;
+  bool new_keyframe = false;
+};
+
+class Tracker {
+ public:
+  Tracker(std::shared_ptr<map::Map> map, KeyFrameSink& mapper, const FrameCamera& camera,
+          std::shared_ptr<const map::ScalePyramid> pyramid, feature::ScaleLevels levels,
+          const TrackerParams& params);
+
+  TrackingOutcome track(Frame frame);
+
+  TrackingState state() const { return state_; }
+  const TrajectoryRecorder& trajectory() const { return recorder_; }
+  const Frame& lastFrame() const { return last_; }
+
+ private:
+  bool initialize();
+  void updateLastFrame();
+  bool trackWithMotionModel();
+  bool trackFromPose(const SE3& T_c_w_prior, float radius);
+  bool trackLocalMap();
+  bool needNewKeyFrame() const;
+  void createNewKeyFrame();
+
+  int searchLastFrame(float radius);
+  int searchReferencePoints(float radius);
+  int searchLocalPoints();
+  int optimizeCurrentPose();
+  int discardOutliers();
+  void updateLocalMap();
+  std::shared_ptr<map::MapPoint> newPointFromDepth(std::size_t i,
+                                                   const std::shared_ptr<map::KeyFrame>& kf);
+
+  std::shared_ptr<map::Map> map_;
+  KeyFrameSink& mapper_;
+  FrameCamera camera_;
+  std::shared_ptr<const map::ScalePyramid> pyramid_;
+  feature::ScaleLevels levels_;
+  TrackerParams params_;
+  cv::Rect2f bounds_;
+
+  TrackingState state_ = TrackingState::NotInitialized;
+  Frame current_;
+  Frame last_;
+  SE3 last_T_l_r_ = SE3::Identity();  // last frame relative to its reference keyframe
+  std::optional<SE3> velocity_;       // T_current_last
+  std::shared_ptr<map::KeyFrame> reference_;
+  std::shared_ptr<map::KeyFrame> last_keyframe_;
+  std::size_t last_keyframe_frame_ = 0;
+  std::vector<std::shared_ptr<map::KeyFrame>> local_keyframes_;
+  std::vector<std::shared_ptr<map::MapPoint>> local_points_;
+  std::vector<std::shared_ptr<map::MapPoint>> temporary_points_;  // last frame's VO points
+  int inliers_ = 0;
+  TrajectoryRecorder recorder_;
+};
+
+}  // namespace lumaslam::track
