@@ -128,6 +128,10 @@ TEST(Settings, EurocStereoConfigMatchesTheRealSensorFiles) {
   EXPECT_NEAR(s.baseline(), 0.110, 0.001);
   EXPECT_DOUBLE_EQ(s.depth.thDepth, 60.0);
   EXPECT_EQ(s.orb.nFeatures, 1200);
+  const std::string summary = s.summary();
+  EXPECT_NE(summary.find("stereo"), std::string::npos) << summary;
+  EXPECT_NE(summary.find("b=0.1101"), std::string::npos) << summary;
+  EXPECT_NE(summary.find("unrectified"), std::string::npos) << summary;
 }
 
 TEST(Settings, KittiConfigMatchesRealCalibAndImageSize) {

@@ -43,10 +43,8 @@ PinholeCamera PinholeCamera::undistorted() const {
 std::vector<cv::Point2f> PinholeCamera::undistortPoints(const std::vector<cv::Point2f>& raw) const {
   if (!hasDistortion() || raw.empty()) return raw;
   std::vector<cv::Point2f> ideal;
-  // OpenCV's default of 5 fixed-point iterations leaves pixel-level errors at the corners of
-  // EuRoC-like lenses (k1 = -0.28); iterate until converged instead.
   cv::undistortPoints(raw, ideal, K(), distortionCoefficients(), cv::noArray(), K(),
-                      cv::TermCriteria(cv::TermCriteria::COUNT | cv::TermCriteria::EPS, 100, 1e-4));
+                      undistortTermination());
   return ideal;
 }
 

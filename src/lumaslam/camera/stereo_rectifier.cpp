@@ -104,7 +104,7 @@ std::vector<cv::Point2f> StereoRectifier::rectifyLeftPoints(
   if (raw.empty()) return raw;
   std::vector<cv::Point2f> out;
   cv::undistortPoints(raw, out, left_.K(), left_.distortionCoefficients(), R1_, P1_,
-                      cv::TermCriteria(cv::TermCriteria::COUNT | cv::TermCriteria::EPS, 100, 1e-4));
+                      PinholeCamera::undistortTermination());
   return out;
 }
 
@@ -113,7 +113,7 @@ std::vector<cv::Point2f> StereoRectifier::rectifyRightPoints(
   if (raw.empty()) return raw;
   std::vector<cv::Point2f> out;
   cv::undistortPoints(raw, out, right_.K(), right_.distortionCoefficients(), R2_, P2_,
-                      cv::TermCriteria(cv::TermCriteria::COUNT | cv::TermCriteria::EPS, 100, 1e-4));
+                      PinholeCamera::undistortTermination());
   return out;
 }
 

@@ -317,6 +317,21 @@ CameraSettings CameraSettings::atWorkingSize() const {
   return out;
 }
 
+std::string Settings::summary() const {
+  const CameraSettings c = camera.atWorkingSize();
+  std::string text = fmt::format("{}, {} {}x{} @{} Hz, fx={} fy={} cx={} cy={}{}", toString(sensor),
+                                 toString(c.model), c.size.width, c.size.height, c.fps, c.fx, c.fy,
+                                 c.cx, c.cy, c.hasDistortion() ? ", distorted" : "");
+  if (stereo) {
+    text += fmt::format(", b={:.4f} m, ThDepth={}", stereo->baseline, depth.thDepth);
+    if (stereo->right) text += ", unrectified pair";
+  }
+  if (sensor == SensorType::Rgbd) text += fmt::format(", DepthMapFactor={}", depth.depthMapFactor);
+  text += fmt::format(", ORB {} x{} levels", orb.nFeatures, orb.nLevels);
+  if (system.sequential) text += ", sequential";
+  return text;
+}
+
 Settings Settings::fromFile(std::shared_ptr<const core::SettingsFile> file,
                             std::optional<SensorType> sensor) {
   if (!file) fail("Settings::fromFile: no settings file given");

@@ -97,6 +97,9 @@ struct Settings {
   // Depth in metres below which a stereo/RGB-D point is "close" (ThDepth * baseline).
   double closeDepth() const { return depth.thDepth * baseline(); }
 
+  // One line for logs: "stereo, PinHole 752x480 @20 Hz, fx=458.654 ..., b=0.110 m, ...".
+  std::string summary() const;
+
   // Parses and checks every key this struct holds; throws Error naming file, key and value.
   // The sensor is `sensor` when given (e.g. a CLI flag), else System.sensor, else inferred
   // from the keys present (docs/settings.md).
