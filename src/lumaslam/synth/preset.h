@@ -1,0 +1,32 @@
+#pragma once
+// Named synthetic sequences, each built to test one thing (docs/synthetic.md describes them).
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "lumaslam/synth/camera_rig.h"
+#include "lumaslam/synth/lighting.h"
+#include "lumaslam/synth/trajectory.h"
+
+namespace lumaslam::synth {
+
+struct Preset {
+  std::string name;
+  std::string description;
+  SensorKind sensor = SensorKind::Rgbd;
+  TrajectoryKind trajectory = TrajectoryKind::Xyz;
+  int frames = 300;
+  int walkers = 0;
+  int moving_boxes = 0;
+  bool spotlight = false;
+  LightingSchedule lighting;
+
+  Rig rig() const { return sensor == SensorKind::Stereo ? eurocStereoRig() : tumRgbdRig(); }
+};
+
+const std::vector<Preset>& allPresets();
+// Throws Error naming the unknown preset and listing the known ones.
+const Preset& findPreset(std::string_view name);
+std::string presetNames();  // comma-separated
+
+}  // namespace lumaslam::synth

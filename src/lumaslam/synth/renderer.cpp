@@ -1,0 +1,225 @@
+#include "lumaslam/synth/renderer.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <vector>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+namespace lumaslam::synth {
+
+namespace {
+
+struct ScreenRect {
+  int x0 = 0, x1 = -1, y0 = 0, y1 = -1;  // inclusive
+};
+
+// Image rectangle covered by a set of world points; the whole image if one is behind the camera.
+template <typename Points>
+ScreenRect projectBounds(const Points& points, const Eigen::Matrix3f& R_c_w,
+                         const Eigen::Vector3f& t_c_w, const PinholeCamera& cam) {
+  float xmin = std::numeric_limits<float>::max(), xmax = -xmin, ymin = xmin, ymax = -xmin;
+  for (const Eigen::Vector3f& p : points) {
+    const Eigen::Vector3f pc = R_c_w * p + t_c_w;
+    if (pc.z() < 0.05f) return {0, cam.width - 1, 0, cam.height - 1};
+    const float u = static_cast<float>(cam.fx) * pc.x() / pc.z() + static_cast<float>(cam.cx);
+    const float v = static_cast<float>(cam.fy) * pc.y() / pc.z() + static_cast<float>(cam.cy);
+    xmin = std::min(xmin, u), xmax = std::max(xmax, u), ymin = std::min(ymin, v),
+    ymax = std::max(ymax, v);
+  }
+  ScreenRect r;
+  r.x0 = std::max(0, static_cast<int>(std::floor(xmin)) - 1);
+  r.x1 = std::min(cam.width - 1, static_cast<int>(std::ceil(xmax)) + 1);
+  r.y0 = std::max(0, static_cast<int>(std::floor(ymin)) - 1);
+  r.y1 = std::min(cam.height - 1, static_cast<int>(std::ceil(ymax)) + 1);
+  return r;
+}
+
+std::array<Eigen::Vector3f, 8> corners(const BoxInstance& box) {
+  std::array<Eigen::Vector3f, 8> c;
+  for (int i = 0; i < 8; ++i)
+    c[static_cast<size_t>(i)] = {(i & 1) ? box.hi.x() : box.lo.x(),
+                                 (i & 2) ? box.hi.y() : box.lo.y(),
+                                 (i & 4) ? box.hi.z() : box.lo.z()};
+  return c;
+}
+
+std::array<Eigen::Vector3f, 4> corners(const WalkerInstance& w) {
+  const Eigen::Vector3f half = w.right * (w.width * 0.5f);
+  const Eigen::Vector3f up(0.0f, 0.0f, w.height);
+  return {w.base - half, w.base + half, w.base - half + up, w.base + half + up};
+}
+
+// Texture coordinates (metres) of point p on a face of a box (see BoxInstance).
+inline void faceUv(const BoxInstance& box, int face, const Eigen::Vector3f& p, float& u, float& v) {
+  switch (face / 2) {
+    case 0:
+      u = p.y() - box.lo.y(), v = box.hi.z() - p.z();
+      break;
+    case 1:
+      u = p.x() - box.lo.x(), v = box.hi.z() - p.z();
+      break;
+    default:
+      u = p.x() - box.lo.x(), v = p.y() - box.lo.y();
+      break;
+  }
+}
+
+struct Hit {
+  float t = std::numeric_limits<float>::max();  // = z-depth, rays have unit camera-z
+  int kind = 0;                                 // 0 room, 1 box, 2 walker
+  int index = 0;
+  int face = 0;
+};
+
+float lightmapSample(const cv::Mat& map, float u, float v) {
+  const float x = std::clamp(u * (1.0f / kLightmapCell), 0.0f, static_cast<float>(map.cols - 2));
+  const float y = std::clamp(v * (1.0f / kLightmapCell), 0.0f, static_cast<float>(map.rows - 2));
+  const int x0 = static_cast<int>(x), y0 = static_cast<int>(y);
+  const float fx = x - static_cast<float>(x0), fy = y - static_cast<float>(y0);
+  const float* r0 = map.ptr<float>(y0);
+  const float* r1 = map.ptr<float>(y0 + 1);
+  return (r0[x0] + fx * (r0[x0 + 1] - r0[x0])) * (1.0f - fy) +
+         (r1[x0] + fx * (r1[x0 + 1] - r1[x0])) * fy;
+}
+
+}  // namespace
+
+RenderedView renderView(const Scene& scene, const SceneSnapshot& snapshot, const PinholeCamera& cam,
+                        const SE3& T_w_c) {
+  RenderedView view;
+  view.radiance.create(cam.height, cam.width, CV_32FC3);
+  view.depth.create(cam.height, cam.width, CV_32F);
+  view.object_ids.create(cam.height, cam.width, CV_8U);
+
+  const Eigen::Matrix3f R_w_c = T_w_c.linear().cast<float>();
+  const Eigen::Vector3f origin = T_w_c.translation().cast<float>();
+  const Eigen::Matrix3f R_c_w = R_w_c.transpose();
+  const Eigen::Vector3f t_c_w = -R_c_w * origin;
+
+  std::vector<ScreenRect> box_rects;
+  for (const auto& box : snapshot.boxes)
+    box_rects.push_back(projectBounds(corners(box), R_c_w, t_c_w, cam));
+  std::vector<ScreenRect> walker_rects;
+  for (const auto& w : snapshot.walkers)
+    walker_rects.push_back(projectBounds(corners(w), R_c_w, t_c_w, cam));
+
+  const float fx = static_cast<float>(cam.fx), fy = static_cast<float>(cam.fy);
+  const float cx = static_cast<float>(cam.cx), cy = static_cast<float>(cam.cy);
+
+  tbb::parallel_for(
+      tbb::blocked_range<int>(0, cam.height, 8), [&](const tbb::blocked_range<int>& rows) {
+        std::vector<int> boxes_in_row, walkers_in_row;
+        for (int y = rows.begin(); y < rows.end(); ++y) {
+          boxes_in_row.clear();
+          walkers_in_row.clear();
+          for (int i = 0; i < static_cast<int>(box_rects.size()); ++i)
+            if (y >= box_rects[static_cast<size_t>(i)].y0 &&
+                y <= box_rects[static_cast<size_t>(i)].y1)
+              boxes_in_row.push_back(i);
+          for (int i = 0; i < static_cast<int>(walker_rects.size()); ++i)
+            if (y >= walker_rects[static_cast<size_t>(i)].y0 &&
+                y <= walker_rects[static_cast<size_t>(i)].y1)
+              walkers_in_row.push_back(i);
+
+          auto* radiance = view.radiance.ptr<cv::Vec3f>(y);
+          auto* depth = view.depth.ptr<float>(y);
+          auto* ids = view.object_ids.ptr<std::uint8_t>(y);
+          const Eigen::Vector3f row_dir =
+              R_w_c.col(1) * ((static_cast<float>(y) - cy) / fy) + R_w_c.col(2);
+          for (int x = 0; x < cam.width; ++x) {
+            // Ray with unit camera-z component, so the hit parameter t is the z-depth.
+            const Eigen::Vector3f d = row_dir + R_w_c.col(0) * ((static_cast<float>(x) - cx) / fx);
+            const Eigen::Vector3f inv(1.0f / d.x(), 1.0f / d.y(), 1.0f / d.z());
+            Hit hit;
+            {  // the room, from inside: nearest exit plane
+              const BoxInstance& room = snapshot.room;
+              for (int a = 0; a < 3; ++a) {
+                const float plane = d[a] > 0.0f ? room.hi[a] : room.lo[a];
+                const float t = (plane - origin[a]) * inv[a];
+                if (t > 0.0f && t < hit.t) hit = {t, 0, 0, a * 2 + (d[a] > 0.0f ? 1 : 0)};
+              }
+            }
+            for (const int i : boxes_in_row) {
+              const ScreenRect& r = box_rects[static_cast<size_t>(i)];
+              if (x < r.x0 || x > r.x1) continue;
+              const BoxInstance& box = snapshot.boxes[static_cast<size_t>(i)];
+              float t_near = 0.0f, t_far = hit.t;
+              int near_axis = -1;
+              bool miss = false;
+              for (int a = 0; a < 3 && !miss; ++a) {
+                float t0 = (box.lo[a] - origin[a]) * inv[a];
+                float t1 = (box.hi[a] - origin[a]) * inv[a];
+                if (t0 > t1) std::swap(t0, t1);
+                if (t0 > t_near) t_near = t0, near_axis = a;
+                t_far = std::min(t_far, t1);
+                miss = t_near > t_far;
+              }
+              if (miss || near_axis < 0 || t_near >= hit.t) continue;
+              hit = {t_near, 1, i, near_axis * 2 + (d[near_axis] > 0.0f ? 0 : 1)};
+            }
+            float walker_u = 0.0f, walker_v = 0.0f;
+            for (const int i : walkers_in_row) {
+              const ScreenRect& r = walker_rects[static_cast<size_t>(i)];
+              if (x < r.x0 || x > r.x1) continue;
+              const WalkerInstance& w = snapshot.walkers[static_cast<size_t>(i)];
+              const float denom = d.dot(w.normal);
+              if (std::abs(denom) < 1e-6f) continue;
+              const float t = (w.base - origin).dot(w.normal) / denom;
+              if (t <= 0.0f || t >= hit.t) continue;
+              const Eigen::Vector3f p = origin + t * d - w.base;
+              const float u = p.dot(w.right), v = p.z();
+              if (!insideWalkerSilhouette(u, v, w.height, w.gait_phase)) continue;
+              hit = {t, 2, i, 0};
+              walker_u = u, walker_v = v;
+            }
+
+            const Eigen::Vector3f p = origin + hit.t * d;
+            const float ray_length = d.norm();
+            const float pixel_size =
+                hit.t * ray_length * ray_length / fx;  // on a fronto-parallel plane
+            cv::Vec3f albedo;
+            Eigen::Vector3f normal;
+            std::uint8_t id = 0;
+            float light = -1.0f;  // baked light if the face has a lightmap
+            if (hit.kind == 2) {
+              const WalkerInstance& w = snapshot.walkers[static_cast<size_t>(hit.index)];
+              const float cosine = std::max(0.2f, std::abs(d.dot(w.normal)) / ray_length);
+              albedo = scene.texture(w.texture).sample(
+                  walker_u + w.width * 0.5f, w.height - walker_v, pixel_size / std::sqrt(cosine));
+              normal = w.normal;
+              id = w.object_id;
+            } else {
+              const BoxInstance& box =
+                  hit.kind == 0 ? snapshot.room : snapshot.boxes[static_cast<size_t>(hit.index)];
+              const int axis = hit.face / 2;
+              normal = Eigen::Vector3f::Zero();
+              // Room faces point into the room, box faces out of the box.
+              normal[axis] = (hit.face % 2 == 1) == (hit.kind == 0) ? -1.0f : 1.0f;
+              float u = 0.0f, v = 0.0f;
+              faceUv(box, hit.face, p, u, v);
+              // Geometric mean of the footprint's two axes: little blur, little aliasing.
+              const float cosine = std::max(0.05f, std::abs(d[axis]) / ray_length);
+              albedo = scene.texture(box.textures[static_cast<size_t>(hit.face)])
+                           .sample(u, v, pixel_size / std::sqrt(cosine));
+              id = box.object_id;
+              const int lightmap = box.lightmaps[static_cast<size_t>(hit.face)];
+              if (lightmap >= 0) light = lightmapSample(scene.lightmap(lightmap), u, v);
+            }
+            if (light < 0.0f) light = staticLighting(snapshot.lights, snapshot.ambient, p, normal);
+            if (snapshot.spot) light += spotLighting(*snapshot.spot, p, normal);
+            // Textures are display-encoded (gamma ~2): square to linear reflectance.
+            radiance[x] =
+                cv::Vec3f(albedo[0] * albedo[0], albedo[1] * albedo[1], albedo[2] * albedo[2]) *
+                light;
+            depth[x] = hit.t;
+            ids[x] = id;
+          }
+        }
+      });
+  return view;
+}
+
+}  // namespace lumaslam::synth

@@ -1,0 +1,159 @@
+#include "lumaslam/synth/sequence.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <opencv2/imgcodecs.hpp>
+
+#include "lumaslam/core/error.h"
+#include "lumaslam/synth/motion_blur.h"
+#include "lumaslam/synth/random.h"
+#include "lumaslam/synth/renderer.h"
+
+namespace lumaslam::synth {
+
+namespace {
+
+Scene buildScene(const Preset& preset, const SynthOptions& options,
+                 const CameraTrajectory& trajectory, std::uint64_t seed) {
+  SceneOptions scene_options;
+  scene_options.walkers = options.walkers.value_or(preset.walkers);
+  scene_options.moving_boxes = options.moving_boxes.value_or(preset.moving_boxes);
+  if (scene_options.walkers < 0 || scene_options.moving_boxes < 0)
+    fail("synth: walkers ({}) and moving boxes ({}) must not be negative", scene_options.walkers,
+         scene_options.moving_boxes);
+  scene_options.spotlight = preset.spotlight;
+  scene_options.view_origin = trajectory.viewOrigin();
+  scene_options.view_direction = trajectory.viewDirection();
+  for (const auto& path : options.texture_images) {
+    cv::Mat image = cv::imread(path.string(), cv::IMREAD_COLOR);
+    if (image.empty())
+      fail("{}: cannot read this texture image (missing or not an image)", path.string());
+    scene_options.posters.push_back(image);
+  }
+  return Scene::build(scene_options, seed);
+}
+
+LightingSchedule effectiveLighting(const Preset& preset, const SynthOptions& options) {
+  LightingSchedule lighting = preset.lighting;
+  if (options.dark_level) {
+    darkCurve(*options.dark_level);  // validates the level
+    lighting.dark_level = *options.dark_level;
+  }
+  if (!options.sensor_noise) lighting.noise_scale = 0.0;
+  if (!options.motion_blur) lighting.motion_blur = false;
+  return lighting;
+}
+
+}  // namespace
+
+SequenceRenderer::SequenceRenderer(const Preset& preset, int frames, std::uint64_t seed,
+                                   const SynthOptions& options)
+    : preset_(preset),
+      rig_(preset.rig()),
+      frames_(frames),
+      seed_(seed),
+      options_(options),
+      // Realistic epochs: TUM fr1 (2011) for RGB-D, EuRoC (2014) for stereo, shifted by the seed.
+      start_ns_(
+          (preset.sensor == SensorKind::Stereo ? 1403715273262142976LL : 1305031102175304000LL) +
+          static_cast<std::int64_t>(hashKey(seed, 0x71e) % 100000) * 1000000000LL),
+      trajectory_(preset.trajectory, std::max(frames, 1) / preset.rig().fps, seed),
+      scene_(buildScene(preset, options, trajectory_, seed)) {
+  if (frames < 1)
+    fail("synth preset '{}': frame count must be at least 1, got {}", preset.name, frames);
+  preset_.lighting = effectiveLighting(preset, options);
+  exposures_ = planExposures(preset_.lighting, rig_, frames);
+}
+
+std::int64_t SequenceRenderer::timestampNs(int index) const {
+  if (rig_.kind == SensorKind::Stereo)  // EuRoC: exact 20 Hz in nanoseconds
+    return start_ns_ + static_cast<std::int64_t>(index) *
+                           static_cast<std::int64_t>(std::llround(1e9 / rig_.fps));
+  // TUM: 30 Hz with +-1 ms capture jitter, stamps in microseconds.
+  const double jitter_us =
+      (unitFromBits(hashKey(seed_, 0x7135, static_cast<std::uint64_t>(index))) - 0.5) * 2000.0;
+  const std::int64_t us = std::llround(static_cast<double>(index) * 1e6 / rig_.fps + jitter_us);
+  return start_ns_ + us * 1000;
+}
+
+SE3 SequenceRenderer::poseAt(double timestamp) const {
+  return trajectory_.pose(timestamp - static_cast<double>(start_ns_) * 1e-9);
+}
+
+const FrameExposure& SequenceRenderer::exposure(int index) const {
+  if (index < 0 || index >= frames_)
+    fail("synth: frame {} is out of range (0..{})", index, frames_ - 1);
+  return exposures_[static_cast<size_t>(index)];
+}
+
+CameraFrame SequenceRenderer::renderCamera(int index, int camera, double t, const SE3& T_w_c,
+                                           const SE3& T_w_rig) const {
+  const FrameExposure& exposure = exposures_[static_cast<size_t>(index)];
+  const SceneSnapshot snapshot = scene_.at(t, T_w_rig.translation());
+  RenderedView view = renderView(scene_, snapshot, rig_.camera, T_w_c);
+
+  cv::Mat radiance = view.radiance;
+  const double exposure_s = exposure.exposure_ms * exposure.jump * 1e-3;
+  if (preset_.lighting.motion_blur && exposure_s > 1e-4) {
+    const SE3 T_c0_c = T_w_rig.inverse() * T_w_c;
+    radiance = applyMotionBlur(radiance, view.depth, rig_.camera, T_w_c,
+                               trajectory_.pose(t - exposure_s / 2) * T_c0_c,
+                               trajectory_.pose(t + exposure_s / 2) * T_c0_c);
+  }
+  SensorModel sensor;
+  sensor.noise_scale = preset_.lighting.noise_scale;
+  CameraFrame frame;
+  frame.image =
+      exposeImage(radiance, exposure.signal(), exposure.gain, preset_.lighting.dark_level, sensor,
+                  hashKey(seed_, 0x1a9e, static_cast<std::uint64_t>(index),
+                          static_cast<std::uint64_t>(camera)));
+  frame.depth = view.depth;
+  frame.mask = view.object_ids > 0;
+  frame.T_w_c = T_w_c;
+  // Ground-truth boxes: tight bounds of each dynamic object's visible pixels.
+  const int objects = scene_.dynamicObjectCount();
+  if (objects > 0) {
+    std::vector<cv::Rect> bounds(static_cast<size_t>(objects) + 1);
+    std::vector<int> counts(static_cast<size_t>(objects) + 1, 0);
+    for (int y = 0; y < view.object_ids.rows; ++y) {
+      const auto* ids = view.object_ids.ptr<std::uint8_t>(y);
+      for (int x = 0; x < view.object_ids.cols; ++x) {
+        if (!ids[x]) continue;
+        cv::Rect& b = bounds[ids[x]];
+        b = counts[ids[x]]++ ? (b | cv::Rect(x, y, 1, 1)) : cv::Rect(x, y, 1, 1);
+      }
+    }
+    for (int id = 1; id <= objects; ++id)
+      if (counts[static_cast<size_t>(id)] >= 20)
+        frame.boxes.push_back({scene_.objectClass(static_cast<std::uint8_t>(id)), id,
+                               bounds[static_cast<size_t>(id)]});
+  }
+  return frame;
+}
+
+Frame SequenceRenderer::render(int index) const {
+  exposure(index);  // range check
+  Frame frame;
+  frame.index = index;
+  frame.timestamp_ns = timestampNs(index);
+  frame.exposure = exposures_[static_cast<size_t>(index)];
+  const double t = static_cast<double>(frame.timestamp_ns - start_ns_) * 1e-9;
+  const SE3 T_w_c0 = trajectory_.pose(t);
+  frame.cam0 = renderCamera(index, 0, t, T_w_c0, T_w_c0);
+  if (rig_.kind == SensorKind::Stereo) {
+    frame.cam1 = renderCamera(index, 1, t, T_w_c0 * rig_.T_c0_c1(), T_w_c0);
+  } else {
+    DepthSensorModel model;
+    model.noise = options_.depth_noise;
+    if (!options_.depth_noise) {
+      model.edge_hole_probability = 0.0f;
+      model.dropout_blobs_per_megapixel = 0.0f;
+    }
+    frame.sensor_depth = simulateDepthSensor(
+        frame.cam0.depth, model, hashKey(seed_, 0xde97, static_cast<std::uint64_t>(index)));
+  }
+  return frame;
+}
+
+}  // namespace lumaslam::synth

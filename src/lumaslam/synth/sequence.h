@@ -1,0 +1,94 @@
+#pragma once
+// A synthetic sequence in memory: scene + trajectory + lighting plan for a preset and seed.
+// render(i) is const, thread-safe and a pure function of (preset, seed, options, i).
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <opencv2/core.hpp>
+
+#include "lumaslam/core/pose.h"
+#include "lumaslam/synth/depth_sensor.h"
+#include "lumaslam/synth/lighting.h"
+#include "lumaslam/synth/preset.h"
+#include "lumaslam/synth/scene.h"
+#include "lumaslam/synth/trajectory.h"
+
+namespace lumaslam::synth {
+
+// Overrides of a preset's defaults.
+struct SynthOptions {
+  std::optional<int> walkers;
+  std::optional<int> moving_boxes;
+  std::optional<int> dark_level;
+  bool motion_blur = true;
+  bool sensor_noise = true;
+  bool depth_noise = true;                            // Kinect-like noise and holes in sensor_depth
+  std::vector<std::filesystem::path> texture_images;  // posters (throws if one is unreadable)
+};
+
+struct ObjectBox {
+  std::string class_name;  // "person" or "box"
+  int object_id = 0;
+  cv::Rect box;  // tight box around the object's visible pixels
+};
+
+struct CameraFrame {
+  cv::Mat image;  // CV_8UC3 BGR
+  cv::Mat depth;  // CV_32F true z-depth in metres
+  cv::Mat mask;   // CV_8U, 255 on dynamic objects
+  std::vector<ObjectBox> boxes;
+  SE3 T_w_c;
+};
+
+struct Frame {
+  int index = 0;
+  std::int64_t timestamp_ns = 0;
+  double timestamp() const { return static_cast<double>(timestamp_ns) * 1e-9; }
+  FrameExposure exposure;
+  CameraFrame cam0;                 // rgb (RGB-D) or left (stereo)
+  std::optional<CameraFrame> cam1;  // right (stereo)
+  cv::Mat sensor_depth;             // RGB-D: Kinect-like depth in metres, 0 = hole
+};
+
+class SequenceRenderer {
+ public:
+  SequenceRenderer(const Preset& preset, int frames, std::uint64_t seed,
+                   const SynthOptions& options = {});
+
+  Frame render(int index) const;
+
+  const Preset& preset() const { return preset_; }
+  const Rig& rig() const { return rig_; }
+  const Scene& scene() const { return scene_; }
+  const CameraTrajectory& trajectory() const { return trajectory_; }
+  int frameCount() const { return frames_; }
+  std::uint64_t seed() const { return seed_; }
+  std::int64_t timestampNs(int index) const;
+  // cam0 pose at an absolute timestamp (seconds, same clock as the frames).
+  SE3 poseAt(double timestamp) const;
+  const FrameExposure& exposure(int index) const;
+
+ private:
+  CameraFrame renderCamera(int index, int camera, double t, const SE3& T_w_c,
+                           const SE3& T_w_rig) const;
+
+  Preset preset_;
+  Rig rig_;
+  int frames_;
+  std::uint64_t seed_;
+  SynthOptions options_;
+  std::int64_t start_ns_;
+  CameraTrajectory trajectory_;
+  Scene scene_;
+  std::vector<FrameExposure> exposures_;
+};
+
+// Convenience: render `frames` frames of the named preset and write the dataset to `out`
+// (TUM RGB-D layout for *-rgbd presets, EuRoC ASL for *-stereo). frames <= 0: preset default.
+void writeSequence(const std::filesystem::path& out, const std::string& preset, int frames,
+                   std::uint64_t seed, const SynthOptions& options = {});
+
+}  // namespace lumaslam::synth

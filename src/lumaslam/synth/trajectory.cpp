@@ -1,0 +1,170 @@
+#include "lumaslam/synth/trajectory.h"
+
+#include <cmath>
+
+#include <Eigen/Geometry>
+
+#include "lumaslam/core/error.h"
+#include "lumaslam/synth/random.h"
+
+namespace lumaslam::synth {
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kDeg = kPi / 180.0;
+
+// Camera looking along world +y with z up: x_c = +x_w, y_c = -z_w, z_c = +y_w.
+Eigen::Matrix3d baseOrientation() {
+  Eigen::Matrix3d R;
+  R << 1, 0, 0, 0, 0, 1, 0, -1, 0;
+  return R;
+}
+
+// yaw about world z, then pitch about camera x, then roll about camera z.
+Eigen::Matrix3d orientation(double yaw, double pitch, double roll) {
+  return Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()).toRotationMatrix() * baseOrientation() *
+         (Eigen::AngleAxisd(pitch, Eigen::Vector3d::UnitX()) *
+          Eigen::AngleAxisd(roll, Eigen::Vector3d::UnitZ()))
+             .toRotationMatrix();
+}
+
+// yaw/pitch that look from `from` towards `to`.
+void lookAt(const Eigen::Vector3d& from, const Eigen::Vector3d& to, double& yaw, double& pitch) {
+  const Eigen::Vector3d d = to - from;
+  yaw = std::atan2(-d.x(), d.y());
+  pitch = std::atan2(d.z(), std::hypot(d.x(), d.y()));  // positive pitch looks up
+}
+
+const Eigen::Vector3d kOrigin(0.0, -0.9, 1.3);  // where the camera works for all but the loop
+const Eigen::Vector3d kTarget(0.0, 2.0, 0.9);   // what it looks at
+
+}  // namespace
+
+TrajectoryKind trajectoryKindFromName(std::string_view name) {
+  if (name == "static") return TrajectoryKind::Static;
+  if (name == "xyz") return TrajectoryKind::Xyz;
+  if (name == "rpy") return TrajectoryKind::Rpy;
+  if (name == "halfsphere") return TrajectoryKind::Halfsphere;
+  if (name == "loop") return TrajectoryKind::Loop;
+  fail("trajectory '{}' is unknown (expected static, xyz, rpy, halfsphere or loop)", name);
+}
+
+std::string trajectoryKindName(TrajectoryKind kind) {
+  switch (kind) {
+    case TrajectoryKind::Static:
+      return "static";
+    case TrajectoryKind::Xyz:
+      return "xyz";
+    case TrajectoryKind::Rpy:
+      return "rpy";
+    case TrajectoryKind::Halfsphere:
+      return "halfsphere";
+    case TrajectoryKind::Loop:
+      return "loop";
+  }
+  return "?";
+}
+
+Eigen::Vector3d CameraTrajectory::Tremor::at(double t) const {
+  return {amplitude.x() * std::sin(frequency.x() * t + phase.x()),
+          amplitude.y() * std::sin(frequency.y() * t + phase.y()),
+          amplitude.z() * std::sin(frequency.z() * t + phase.z())};
+}
+
+CameraTrajectory::CameraTrajectory(TrajectoryKind kind, double duration_s, std::uint64_t seed)
+    : kind_(kind), duration_(duration_s) {
+  if (!(duration_s > 0.0)) fail("trajectory: duration must be positive, got {}", duration_s);
+  Rng rng(seed, 0x7a7);
+  const auto randomVector = [&](double lo, double hi) {
+    return Eigen::Vector3d(rng.uniform(lo, hi), rng.uniform(lo, hi), rng.uniform(lo, hi));
+  };
+  // Hand tremor: ~2-5 mm at 3-7 Hz and ~0.15 degrees (TUM hand-held sequences).
+  const double scale = kind == TrajectoryKind::Static ? 0.5 : 1.0;
+  position_tremor_ = {randomVector(0.001, 0.003) * scale, randomVector(18.0, 40.0),
+                      randomVector(0, 2 * kPi)};
+  angle_tremor_ = {randomVector(0.1, 0.2) * kDeg * scale, randomVector(15.0, 35.0),
+                   randomVector(0, 2 * kPi)};
+  phases_ = randomVector(0, 2 * kPi);
+}
+
+Eigen::Vector3d CameraTrajectory::viewOrigin() const {
+  return kind_ == TrajectoryKind::Loop ? Eigen::Vector3d(0.0, 0.0, 1.3) : kOrigin;
+}
+
+Eigen::Vector3d CameraTrajectory::viewDirection() const {
+  return (kTarget - kOrigin).normalized();
+}
+
+SE3 CameraTrajectory::pose(double t) const {
+  Eigen::Vector3d position = kOrigin;
+  double yaw = 0, pitch = 0, roll = 0;
+  const Eigen::Vector3d& ph = phases_;
+  switch (kind_) {
+    case TrajectoryKind::Static: {
+      position +=
+          Eigen::Vector3d(0.004 * std::sin(0.3 * t + ph.x()), 0.004 * std::sin(0.23 * t + ph.y()),
+                          0.003 * std::sin(0.37 * t + ph.z()));
+      lookAt(position, kTarget, yaw, pitch);
+      break;
+    }
+    case TrajectoryKind::Xyz: {
+      // Peak speed ~0.35 m/s, mean ~0.25 m/s; eases in from rest over the first second.
+      const double ease = t < 1.0 ? t * t * (3.0 - 2.0 * t) : 1.0;
+      position +=
+          ease * Eigen::Vector3d(0.28 * std::sin(1.05 * t + ph.x()) - 0.28 * std::sin(ph.x()),
+                                 0.22 * std::sin(0.8 * t + ph.y()) - 0.22 * std::sin(ph.y()),
+                                 0.14 * std::sin(1.3 * t + ph.z()) - 0.14 * std::sin(ph.z()));
+      lookAt(position,
+             kTarget + Eigen::Vector3d(0.3 * std::sin(0.4 * t), 0.0, 0.1 * std::sin(0.5 * t)), yaw,
+             pitch);
+      roll = 3.0 * kDeg * std::sin(0.6 * t + ph.x());
+      break;
+    }
+    case TrajectoryKind::Rpy: {
+      const double ease = t < 1.0 ? t * t * (3.0 - 2.0 * t) : 1.0;
+      position += ease * Eigen::Vector3d(0.03 * std::sin(0.7 * t), 0.02 * std::sin(0.5 * t),
+                                         0.02 * std::sin(0.9 * t));
+      lookAt(position, kTarget, yaw, pitch);
+      // Peak angular rates ~45-60 deg/s per axis.
+      yaw += ease * 28.0 * kDeg * (std::sin(1.9 * t + ph.x()) - std::sin(ph.x()));
+      pitch += ease * 15.0 * kDeg * (std::sin(2.3 * t + ph.y()) - std::sin(ph.y()));
+      roll = ease * 22.0 * kDeg * (std::sin(2.1 * t + ph.z()) - std::sin(ph.z()));
+      break;
+    }
+    case TrajectoryKind::Halfsphere: {
+      // On a sphere of radius 0.6 m around the working point, ~0.3 m/s.
+      const double ease = t < 1.0 ? t * t * (3.0 - 2.0 * t) : 1.0;
+      const double azimuth =
+          ease * 1.1 * std::sin(0.45 * t + ph.x()) - 1.1 * std::sin(ph.x()) * ease;
+      const double elevation = 0.35 + ease * 0.3 * std::sin(0.6 * t + ph.y());
+      const Eigen::Vector3d centre = kOrigin + Eigen::Vector3d(0.0, 0.6, -0.2);
+      position = centre + 0.6 * Eigen::Vector3d(std::sin(azimuth) * std::cos(elevation),
+                                                -std::cos(azimuth) * std::cos(elevation),
+                                                std::sin(elevation));
+      lookAt(position, kTarget, yaw, pitch);
+      roll = 4.0 * kDeg * std::sin(0.5 * t + ph.z());
+      break;
+    }
+    case TrajectoryKind::Loop: {
+      // One lap of an ellipse in `duration_` seconds, heading outwards; closes exactly.
+      const double s = 2.0 * kPi * t / duration_;
+      position =
+          Eigen::Vector3d(1.0 * std::sin(s), -0.7 * std::cos(s), 1.3 + 0.08 * std::sin(2.0 * s));
+      yaw = s + kPi;  // facing away from the centre (towards -y at s = 0)
+      yaw += 0.25 * std::sin(s);
+      pitch = 8.0 * kDeg + 4.0 * kDeg * std::sin(3.0 * s);
+      roll = 3.0 * kDeg * std::sin(2.0 * s);
+      break;
+    }
+  }
+  position += position_tremor_.at(t) - position_tremor_.at(0.0);
+  const Eigen::Vector3d tremor = angle_tremor_.at(t) - angle_tremor_.at(0.0);
+  yaw += tremor.x(), pitch += tremor.y(), roll += tremor.z();
+  SE3 T_w_c = SE3::Identity();
+  T_w_c.linear() = orientation(yaw, pitch, roll);
+  T_w_c.translation() = position;
+  return T_w_c;
+}
+
+}  // namespace lumaslam::synth

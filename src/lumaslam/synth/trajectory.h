@@ -1,0 +1,51 @@
+#pragma once
+// Smooth hand-held camera trajectories like the TUM RGB-D / EuRoC benchmark motions: sums of
+// sinusoids (C-infinity) plus a small seeded tremor, evaluated at any time.
+#include <cstdint>
+#include <string>
+#include <string_view>
+
+#include <Eigen/Core>
+
+#include "lumaslam/core/pose.h"
+
+namespace lumaslam::synth {
+
+enum class TrajectoryKind {
+  Static,      // nearly still: millimetre drift and tremor
+  Xyz,         // translation shake along x, y, z (~0.2-0.35 m/s), looking at the scene
+  Rpy,         // fast roll/pitch/yaw rotations (~40-90 deg/s) with little translation
+  Halfsphere,  // moving over a half sphere (r ~0.6 m) while looking at the scene
+  Loop,        // a closed ellipse around the room, looking outwards; ends where it began
+};
+
+TrajectoryKind trajectoryKindFromName(std::string_view name);  // throws Error on unknown names
+std::string trajectoryKindName(TrajectoryKind kind);
+
+class CameraTrajectory {
+ public:
+  // `duration_s` sets the loop period (the loop closes at t = duration_s).
+  CameraTrajectory(TrajectoryKind kind, double duration_s, std::uint64_t seed);
+
+  TrajectoryKind kind() const { return kind_; }
+  // Camera-to-world pose at time t (seconds from the start). Camera: x right, y down, z forward.
+  SE3 pose(double t) const;
+
+  // Where the camera mostly is and looks, for placing walkers and clear space in the scene.
+  Eigen::Vector3d viewOrigin() const;
+  Eigen::Vector3d viewDirection() const;
+
+ private:
+  struct Tremor {
+    Eigen::Vector3d amplitude, frequency, phase;
+    Eigen::Vector3d at(double t) const;
+  };
+
+  TrajectoryKind kind_;
+  double duration_;
+  Tremor position_tremor_;
+  Tremor angle_tremor_;
+  Eigen::Vector3d phases_;
+};
+
+}  // namespace lumaslam::synth
