@@ -1,3 +1,4 @@
 target_link_libraries(test_feature_orb_extractor PRIVATE opencv_imgcodecs)
 target_link_libraries(test_feature_matchers PRIVATE opencv_imgcodecs)
 target_link_libraries(test_camera_stereo_rectify PRIVATE opencv_features2d opencv_imgcodecs)
+target_link_libraries(test_synth_render PRIVATE opencv_features2d)
