@@ -1,7 +1,7 @@
 #pragma once
-// FAST corners detected cell by cell (30x30 px cells, ORB-SLAM's scheme): each cell first
-// tries a high threshold and falls back to a low one, so low-contrast regions still get
-// candidates and the later quadtree distribution has something to choose from everywhere.
+// FAST corners with a per-cell threshold (30x30 px cells, ORB-SLAM's scheme): a cell keeps its
+// corners of the high threshold, and only a cell with none falls back to the low threshold,
+// so low-contrast regions still get candidates for the quadtree distribution.
 #include <vector>
 
 #include <opencv2/core.hpp>
