@@ -78,10 +78,12 @@ std::vector<Preset> buildPresets() {
            300);
   p.spotlight = true;
   presets.push_back(p);
-  p = make("dark-rgbd",
-           "RGB-D xyz in the dark: long exposures (blur), high gain (noise), dark level 3", Rgbd,
-           Xyz, 300);
+  p = make(
+      "dark-rgbd",
+      "RGB-D xyz at 1.6x speed in the dark: long exposures (blur), high gain (noise), dark level 3",
+      Rgbd, Xyz, 300);
   p.lighting = darkLighting(3);
+  p.motion_speed = 1.6;
   presets.push_back(p);
   p = make("walking-dark-rgbd", "dark-rgbd with two people walking", Rgbd, Xyz, 300);
   p.lighting = darkLighting(3);

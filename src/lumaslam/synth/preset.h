@@ -16,6 +16,7 @@ struct Preset {
   SensorKind sensor = SensorKind::Rgbd;
   TrajectoryKind trajectory = TrajectoryKind::Xyz;
   int frames = 300;
+  double motion_speed = 1.0;  // >1 plays the trajectory faster
   int walkers = 0;
   int moving_boxes = 0;
   bool spotlight = false;

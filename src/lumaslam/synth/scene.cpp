@@ -337,7 +337,7 @@ Scene Scene::build(const SceneOptions& options, std::uint64_t seed) {
   for (const float sx : {-0.5f, 0.5f})
     for (const float sy : {-0.5f, 0.5f})
       scene.lights_.push_back({{sx * room_size.x() * 0.6f, sy * room_size.y() * 0.6f, light_z},
-                               options.spotlight ? 0.25f : 3.2f});
+                               options.spotlight ? 0.12f : 3.2f});
   scene.ambient_ = options.spotlight ? 0.02f : 0.28f;
   scene.bakeLightmaps(scene.room_, true);
   for (auto& box : scene.static_boxes_) scene.bakeLightmaps(box, false);
@@ -389,7 +389,7 @@ SceneSnapshot Scene::at(double t, const Eigen::Vector3d& viewer) const {
     spot.direction = (target - spot.position).normalized();
     spot.cos_outer = std::cos(24.0f * static_cast<float>(CV_PI) / 180.0f);
     spot.cos_inner = std::cos(12.0f * static_cast<float>(CV_PI) / 180.0f);
-    spot.intensity = 22.0f;
+    spot.intensity = 30.0f;
     snapshot.spot = spot;
   }
   return snapshot;

@@ -58,7 +58,8 @@ SequenceRenderer::SequenceRenderer(const Preset& preset, int frames, std::uint64
       start_ns_(
           (preset.sensor == SensorKind::Stereo ? 1403715273262142976LL : 1305031102175304000LL) +
           static_cast<std::int64_t>(hashKey(seed, 0x71e) % 100000) * 1000000000LL),
-      trajectory_(preset.trajectory, std::max(frames, 1) / preset.rig().fps, seed),
+      trajectory_(preset.trajectory, std::max(frames, 1) / preset.rig().fps, seed,
+                  preset.motion_speed),
       scene_(buildScene(preset, options, trajectory_, seed)) {
   if (frames < 1)
     fail("synth preset '{}': frame count must be at least 1, got {}", preset.name, frames);

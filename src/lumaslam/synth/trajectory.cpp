@@ -72,18 +72,20 @@ Eigen::Vector3d CameraTrajectory::Tremor::at(double t) const {
           amplitude.z() * std::sin(frequency.z() * t + phase.z())};
 }
 
-CameraTrajectory::CameraTrajectory(TrajectoryKind kind, double duration_s, std::uint64_t seed)
-    : kind_(kind), duration_(duration_s) {
+CameraTrajectory::CameraTrajectory(TrajectoryKind kind, double duration_s, std::uint64_t seed,
+                                   double speed)
+    : kind_(kind), duration_(duration_s), speed_(speed) {
   if (!(duration_s > 0.0)) fail("trajectory: duration must be positive, got {}", duration_s);
+  if (!(speed > 0.0)) fail("trajectory: speed must be positive, got {}", speed);
   Rng rng(seed, 0x7a7);
   const auto randomVector = [&](double lo, double hi) {
     return Eigen::Vector3d(rng.uniform(lo, hi), rng.uniform(lo, hi), rng.uniform(lo, hi));
   };
-  // Hand tremor: ~2-5 mm at 3-7 Hz and ~0.15 degrees (TUM hand-held sequences).
-  const double scale = kind == TrajectoryKind::Static ? 0.5 : 1.0;
-  position_tremor_ = {randomVector(0.001, 0.003) * scale, randomVector(18.0, 40.0),
+  // Hand tremor: sub-millimetre at 1.5-4 Hz and < 0.1 degree (a still hand on TUM's Kinect).
+  const double scale = kind == TrajectoryKind::Static ? 0.3 : 1.0;
+  position_tremor_ = {randomVector(0.0003, 0.001) * scale, randomVector(10.0, 25.0),
                       randomVector(0, 2 * kPi)};
-  angle_tremor_ = {randomVector(0.1, 0.2) * kDeg * scale, randomVector(15.0, 35.0),
+  angle_tremor_ = {randomVector(0.03, 0.08) * kDeg * scale, randomVector(10.0, 25.0),
                    randomVector(0, 2 * kPi)};
   phases_ = randomVector(0, 2 * kPi);
 }
@@ -96,7 +98,8 @@ Eigen::Vector3d CameraTrajectory::viewDirection() const {
   return (kTarget - kOrigin).normalized();
 }
 
-SE3 CameraTrajectory::pose(double t) const {
+SE3 CameraTrajectory::pose(double real_t) const {
+  const double t = kind_ == TrajectoryKind::Loop ? real_t : real_t * speed_;
   Eigen::Vector3d position = kOrigin;
   double yaw = 0, pitch = 0, roll = 0;
   const Eigen::Vector3d& ph = phases_;

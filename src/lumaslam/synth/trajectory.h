@@ -24,8 +24,9 @@ std::string trajectoryKindName(TrajectoryKind kind);
 
 class CameraTrajectory {
  public:
-  // `duration_s` sets the loop period (the loop closes at t = duration_s).
-  CameraTrajectory(TrajectoryKind kind, double duration_s, std::uint64_t seed);
+  // `duration_s` sets the loop period (the loop closes at t = duration_s); `speed` > 1 plays
+  // the other motions faster (e.g. 1.6 for MAV-like speeds).
+  CameraTrajectory(TrajectoryKind kind, double duration_s, std::uint64_t seed, double speed = 1.0);
 
   TrajectoryKind kind() const { return kind_; }
   // Camera-to-world pose at time t (seconds from the start). Camera: x right, y down, z forward.
@@ -43,6 +44,7 @@ class CameraTrajectory {
 
   TrajectoryKind kind_;
   double duration_;
+  double speed_;
   Tremor position_tremor_;
   Tremor angle_tremor_;
   Eigen::Vector3d phases_;
