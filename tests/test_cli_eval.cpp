@@ -1,0 +1,127 @@
+// Runs the built `lumaslam eval` on trajectory files written to a temporary folder.
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cstdio>
+#include <fstream>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "lumaslam/io/trajectory_io.h"
+#include "test_eval_synthetic.h"
+#include "test_paths.h"
+
+namespace lumaslam {
+namespace {
+
+struct RunResult {
+  int exit_code = -1;
+  std::string output;  // stdout and stderr
+};
+
+RunResult runCli(const std::string& arguments) {
+  const std::string command = test::cliPath().string() + " " + arguments + " 2>&1";
+  RunResult result;
+  FILE* pipe = popen(command.c_str(), "r");
+  if (!pipe) return result;
+  std::array<char, 4096> buffer{};
+  while (fgets(buffer.data(), buffer.size(), pipe)) result.output += buffer.data();
+  const int status = pclose(pipe);
+  result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return result;
+}
+
+nlohmann::json readJson(const std::filesystem::path& path) {
+  std::ifstream file(path);
+  return nlohmann::json::parse(file);
+}
+
+TEST(CliEval, WritesTableJsonAndPlotForAMonocularEstimate) {
+  test::TempDir dir("cli_eval");
+  const Trajectory ground_truth = test::helix(300);
+  // Estimate at a third of the scale, in another frame, with 1 cm noise.
+  const Trajectory estimate =
+      test::transformed(test::withPositionNoise(ground_truth, 0.01, 5), 1.0 / 3.0,
+                        test::someRotation(), Eigen::Vector3d(0.5, 0.0, -1.0));
+  const auto gt_path = dir.path() / "gt.txt";
+  const auto est_path = dir.path() / "est.txt";
+  io::writeTrajectory(gt_path, ground_truth, io::TrajectoryFormat::Tum);
+  io::writeTrajectory(est_path, estimate, io::TrajectoryFormat::Tum);
+  const auto json_path = dir.path() / "report.json";
+  const auto plot_path = dir.path() / "plot.svg";
+
+  const RunResult run =
+      runCli("eval " + est_path.string() + " " + gt_path.string() +
+             " --align sim3 --max-dt 0.02 --rpe-delta 5 --rpe-unit frames --json " +
+             json_path.string() + " --plot " + plot_path.string());
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  EXPECT_NE(run.output.find("ATE [m]"), std::string::npos) << run.output;
+  EXPECT_NE(run.output.find("RPE rot [deg]"), std::string::npos) << run.output;
+
+  const nlohmann::json report = readJson(json_path);
+  EXPECT_EQ(report["ate"]["count"], 300);
+  EXPECT_DOUBLE_EQ(report["ate"]["coverage"].get<double>(), 1.0);
+  EXPECT_NEAR(report["ate"]["rmse"].get<double>(), 0.01 * std::sqrt(3.0), 0.002);
+  for (const char* stat : {"rmse", "mean", "median", "std", "min", "max", "count"}) {
+    EXPECT_TRUE(report["rpe"]["trans"].contains(stat)) << stat;
+    EXPECT_TRUE(report["rpe"]["rot"].contains(stat)) << stat;
+  }
+  EXPECT_EQ(report["rpe"]["trans"]["count"], 59);  // 299 / 5 consecutive pairs
+  EXPECT_EQ(report["alignment"]["mode"], "sim3");
+  EXPECT_NEAR(report["alignment"]["scale"].get<double>(), 3.0, 0.01);
+  EXPECT_EQ(report["alignment"]["rotation"].size(), 3u);
+  EXPECT_EQ(report["alignment"]["translation"].size(), 3u);
+
+  std::ifstream plot(plot_path);
+  std::string first_line;
+  std::getline(plot, first_line);
+  EXPECT_EQ(first_line.rfind("<?xml", 0), 0u);
+}
+
+TEST(CliEval, ReadsGroundTruthFromADatasetSpec) {
+  test::TempDir dir("cli_eval_spec");
+  const auto sequence = test::dataDir() / "kitti/odometry_07_first160/sequences/07";
+  const auto est_path = dir.path() / "est.txt";
+  const auto json_path = dir.path() / "report.json";
+  // The KITTI ground truth itself, as a TUM file with the times.txt stamps.
+  io::writeTrajectory(est_path,
+                      io::readTrajectory(sequence / "../../poses/07.txt",
+                                         io::TrajectoryFormat::Kitti, sequence / "times.txt"),
+                      io::TrajectoryFormat::Tum);
+  const RunResult run = runCli("eval " + est_path.string() + " kitti:" + sequence.string() +
+                               " --rpe-delta 10 --rpe-unit m --json " + json_path.string());
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  const nlohmann::json report = readJson(json_path);
+  EXPECT_EQ(report["ate"]["count"], 160);
+  EXPECT_LT(report["ate"]["max"].get<double>(), 1e-6);
+  EXPECT_EQ(report["rpe"]["unit"], "m");
+}
+
+TEST(CliEval, MissingOrBadInputFailsWithAMessageNamingIt) {
+  test::TempDir dir("cli_eval_bad");
+  const auto gt_path = dir.path() / "gt.txt";
+  io::writeTrajectory(gt_path, test::helix(50), io::TrajectoryFormat::Tum);
+  const auto missing = dir.path() / "no_such_estimate.txt";
+
+  const RunResult run = runCli("eval " + missing.string() + " " + gt_path.string());
+  EXPECT_NE(run.exit_code, 0);
+  EXPECT_NE(run.output.find(missing.string()), std::string::npos) << run.output;
+
+  // An estimate that shares no time with the ground truth: the message names both files.
+  const auto late_path = dir.path() / "late.txt";
+  io::writeTrajectory(late_path, test::helix(50, 0.05, 9000.0), io::TrajectoryFormat::Tum);
+  const RunResult no_overlap = runCli("eval " + late_path.string() + " " + gt_path.string());
+  EXPECT_NE(no_overlap.exit_code, 0);
+  EXPECT_NE(no_overlap.output.find(late_path.string()), std::string::npos) << no_overlap.output;
+  EXPECT_NE(no_overlap.output.find("no estimate pose is within"), std::string::npos)
+      << no_overlap.output;
+
+  const RunResult bad_mode =
+      runCli("eval " + gt_path.string() + " " + gt_path.string() + " --align affine");
+  EXPECT_NE(bad_mode.exit_code, 0);
+  EXPECT_NE(bad_mode.output.find("affine"), std::string::npos) << bad_mode.output;
+}
+
+}  // namespace
+}  // namespace lumaslam
