@@ -1,0 +1,53 @@
+#pragma once
+// Every `Detector.*` setting: which detector, its thresholds, the asynchronous worker's
+// stride and queue, and the dynamic mask. Defaults suit YOLOv5n on people.
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "lumaslam/core/settings_file.h"
+
+namespace lumaslam::detect {
+
+struct PropagationParams {
+  int max_features = 30;        // good features tracked per box
+  float inner_fraction = 0.6f;  // features come from this central part of each box
+  int min_tracked = 3;          // fewer tracked features: the box stays where it was
+};
+
+struct MaskParams {
+  int margin_px = 8;                  // boxes grow by this much on every side
+  double depth_tolerance_m = 0.4;     // pixels farther than person depth + this are static
+  double depth_percentile = 0.25;     // person depth: this percentile of the central depths
+  float depth_inner_fraction = 0.5f;  // person depth is read from this central part of the box
+};
+
+struct DetectorParams {
+  std::string type = "yolo";    // Detector.type: yolo | box_file
+  std::filesystem::path model;  // Detector.model (ONNX)
+  std::filesystem::path names;  // Detector.names (default: coco80.names next to the model)
+  int input_size = 0;           // Detector.input_size: 0 = read from the model
+  float confidence_threshold =
+      0.15f;                    // Detector.confidence: objectness * class score (docs/dynamic.md)
+  float nms_threshold = 0.45f;  // Detector.nms: IoU above which boxes are merged
+  std::vector<std::string> classes{"person"};  // Detector.classes: comma-separated names
+  int threads = 0;                             // Detector.threads: cv::setNumThreads, 0 = keep
+  std::filesystem::path box_file;              // Detector.box_file (type box_file)
+  double box_file_tolerance = 0.02;            // Detector.box_file_tolerance [s]
+  int stride = 1;                              // Detector.stride: detect every k-th frame
+  int queue_capacity = 4;                      // Detector.queue_capacity: frames waiting
+  PropagationParams propagation;               // Detector.propagation_*
+  MaskParams mask;                             // Detector.mask_margin, Detector.depth_*
+
+  // Reads every Detector.* key present; absent keys keep their defaults. Throws Error
+  // naming the file and key for a wrong type or an out-of-range value.
+  static DetectorParams fromSettings(const core::SettingsFile& settings);
+
+  // names, or coco80.names in the model's folder when names is empty.
+  std::filesystem::path namesPath() const;
+};
+
+// "person, car" -> {"person", "car"}; empty items are dropped.
+std::vector<std::string> splitClassList(const std::string& text);
+
+}  // namespace lumaslam::detect
