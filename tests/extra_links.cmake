@@ -4,3 +4,4 @@ target_link_libraries(test_camera_stereo_rectify PRIVATE opencv_features2d openc
 target_link_libraries(test_synth_render PRIVATE opencv_features2d)
 target_link_libraries(test_synth_io_readers PRIVATE lumaslam_io)
 target_link_libraries(test_detect_worker PRIVATE opencv_videoio)
+target_link_libraries(test_detect_night PRIVATE lumaslam_enhance)
