@@ -75,6 +75,23 @@ TEST(OptimizePoseOnly, PyramidLevelsWeightTheResiduals) {
   }
 }
 
+TEST(OptimizePoseOnly, ResidualLayoutsAndSolversAgree) {
+  // Batched (Huber inside one block) and per-observation (ceres::HuberLoss) minimise the same
+  // objective; QR and normal equations solve the same linear systems.
+  for (const bool stereo : {false, true}) {
+    const SyntheticPoseOnly synthetic =
+        makeSyntheticPoseOnly({.numObservations = 300, .stereo = stereo, .seed = 17});
+    const PoseOnlyResult batched = optimizePose(synthetic.problem);
+    for (const PoseOnlyOptions& options :
+         {PoseOnlyOptions{.batchResiduals = false}, PoseOnlyOptions{.solver = DenseSolver::kQR}}) {
+      const PoseOnlyResult other = optimizePose(synthetic.problem, options);
+      EXPECT_LT(translationError(other.T_c_w, batched.T_c_w), 1e-4);
+      EXPECT_LT(rotationErrorDeg(other.T_c_w, batched.T_c_w), 1e-3);
+      EXPECT_EQ(other.isOutlier, batched.isOutlier);
+    }
+  }
+}
+
 TEST(OptimizePoseOnly, NoObservationsLeavesPoseAndFails) {
   PoseOnlyProblem problem{.camera = syntheticCamera(),
                           .T_c_w = perturbPose(SE3::Identity(), 1.0, 10.0, 3u)};

@@ -1,5 +1,7 @@
 #include "lumaslam/optimize/pose_only.h"
 
+#include <algorithm>
+#include <array>
 #include <memory>
 
 #include <ceres/loss_function.h>
@@ -7,6 +9,7 @@
 #include <ceres/solver.h>
 
 #include "lumaslam/core/error.h"
+#include "lumaslam/optimize/pose_batch_cost.h"
 #include "lumaslam/optimize/reprojection_cost.h"
 #include "lumaslam/optimize/se3_parameter.h"
 
@@ -67,37 +70,57 @@ PoseOnlyResult optimizePose(const PoseOnlyProblem& problem, const PoseOnlyOption
     return result;
   }
 
+  // Batched: a 6-vector update of a reference pose (pose_batch_cost.h). Per observation: the
+  // SE3 block with its manifold (se3_parameter.h).
+  std::array<double, PoseBatchCost::kParameters> delta{};
   PoseBlock pose = toPoseBlock(problem.T_c_w);
   SharedLosses losses(options.thresholds);
   ceres::Problem::Options problemOptions;
   problemOptions.loss_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
   problemOptions.manifold_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
   ceres::Problem ceresProblem(problemOptions);
-  ceresProblem.AddParameterBlock(pose.data(), kPoseBlockSize, se3LeftManifold());
 
-  // Non-owning: the problem owns the costs; we only toggle them between rounds.
-  std::vector<PoseReprojectionCost<2>*> monoCosts(observations.size(), nullptr);
-  std::vector<PoseReprojectionCost<3>*> stereoCosts(observations.size(), nullptr);
-  for (int i = 0; i < numObservations; ++i) {
-    const PoseObservation& obs = observations[i];
-    if (obs.isStereo()) {
-      auto* cost = new PoseReprojectionCost<3>(problem.camera, obs.X_w,
-                                               {obs.uv.x(), obs.uv.y(), obs.uRight}, obs.invSigma2);
-      ceresProblem.AddResidualBlock(cost, &losses.stereo, pose.data());
-      stereoCosts[i] = cost;
-    } else {
-      auto* cost = new PoseReprojectionCost<2>(problem.camera, obs.X_w, obs.uv, obs.invSigma2);
-      ceresProblem.AddResidualBlock(cost, &losses.mono, pose.data());
-      monoCosts[i] = cost;
+  // Non-owning: the problem owns the costs; we only toggle observations between rounds.
+  PoseBatchCost* batchCost = nullptr;
+  std::vector<PoseReprojectionCost<2>*> monoCosts;
+  std::vector<PoseReprojectionCost<3>*> stereoCosts;
+  if (options.batchResiduals) {
+    batchCost = new PoseBatchCost(problem.camera, observations, problem.T_c_w);
+    batchCost->setHuberDeltas(options.thresholds.huberDeltaMono(),
+                              options.thresholds.huberDeltaStereo());
+    ceresProblem.AddResidualBlock(batchCost, nullptr, delta.data());
+  } else {
+    ceresProblem.AddParameterBlock(pose.data(), kPoseBlockSize, se3LeftManifold());
+    monoCosts.assign(observations.size(), nullptr);
+    stereoCosts.assign(observations.size(), nullptr);
+    for (int i = 0; i < numObservations; ++i) {
+      const PoseObservation& obs = observations[i];
+      if (obs.isStereo()) {
+        stereoCosts[i] = new PoseReprojectionCost<3>(
+            problem.camera, obs.X_w, {obs.uv.x(), obs.uv.y(), obs.uRight}, obs.invSigma2);
+        ceresProblem.AddResidualBlock(stereoCosts[i], &losses.stereo, pose.data());
+      } else {
+        monoCosts[i] = new PoseReprojectionCost<2>(problem.camera, obs.X_w, obs.uv, obs.invSigma2);
+        ceresProblem.AddResidualBlock(monoCosts[i], &losses.mono, pose.data());
+      }
     }
   }
   const auto setEnabled = [&](int i, bool enabled) {
-    if (monoCosts[i]) monoCosts[i]->setEnabled(enabled);
-    if (stereoCosts[i]) stereoCosts[i]->setEnabled(enabled);
+    if (batchCost) batchCost->setActive(i, enabled);
+    if (!monoCosts.empty() && monoCosts[i]) monoCosts[i]->setEnabled(enabled);
+    if (!stereoCosts.empty() && stereoCosts[i]) stereoCosts[i]->setEnabled(enabled);
+  };
+  const auto currentPose = [&] {
+    return batchCost ? batchCost->poseAt(delta.data()) : fromPoseBlock(pose.data());
+  };
+  const auto dropKernels = [&] {
+    losses.dropKernels();
+    if (batchCost) batchCost->setHuberDeltas(0.0, 0.0);
   };
 
   ceres::Solver::Options solverOptions;
-  solverOptions.linear_solver_type = ceres::DENSE_QR;
+  solverOptions.linear_solver_type =
+      options.solver == DenseSolver::kQR ? ceres::DENSE_QR : ceres::DENSE_NORMAL_CHOLESKY;
   solverOptions.max_num_iterations = options.iterationsPerRound;
   solverOptions.num_threads = 1;
   solverOptions.logging_type = ceres::SILENT;
@@ -106,18 +129,24 @@ PoseOnlyResult optimizePose(const PoseOnlyProblem& problem, const PoseOnlyOption
   int numInliers = 0;
   for (int round = 0; round < options.rounds; ++round) {
     // A point that is behind the current pose cannot be evaluated: exclude it up front.
-    const SE3 T_before = fromPoseBlock(pose.data());
+    const SE3 T_before = currentPose();
     for (int i = 0; i < numObservations; ++i) {
       if (!result.isOutlier[i] && !((T_before * observations[i].X_w).z() > kMinProjectionDepth)) {
         result.isOutlier[i] = true;
         setEnabled(i, false);
       }
     }
-    if (round == options.rounds - 1) losses.dropKernels();
+    if (round == options.rounds - 1) dropKernels();
     ceres::Solver::Summary summary;
     ceres::Solve(solverOptions, &ceresProblem, &summary);
+    // summary.iterations includes the initial evaluation (iteration 0).
+    result.iterations += std::max(0, static_cast<int>(summary.iterations.size()) - 1);
 
-    const SE3 T_c_w = fromPoseBlock(pose.data());
+    const SE3 T_c_w = currentPose();
+    if (batchCost) {
+      batchCost->setReference(T_c_w);
+      delta.fill(0.0);
+    }
     numInliers = 0;
     for (int i = 0; i < numObservations; ++i) {
       const PoseObservation& obs = observations[i];
@@ -133,7 +162,7 @@ PoseOnlyResult optimizePose(const PoseOnlyProblem& problem, const PoseOnlyOption
 
   result.numInliers = numInliers;
   result.success = numInliers >= options.minInliers;
-  if (result.success) result.T_c_w = fromPoseBlock(pose.data());
+  if (result.success) result.T_c_w = currentPose();
   return result;
 }
 
