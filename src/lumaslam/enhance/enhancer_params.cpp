@@ -116,8 +116,16 @@ EnhancerParams EnhancerParams::forPreset(const std::string& name) {
     p = EnhancerParams{};
     applyMeasuredChoices(p);
   } else if (name == "best") {
-    p = EnhancerParams{};
+    // Highest correct-match count on the MEFB exposure pairs (docs/enhancement.md): swapped
+    // compensation on gray, then one-tile adaptive CLAHE with limit in [6, 12].
     applyMeasuredChoices(p);
+    p.gate.enabled = true;
+    p.compensation.enabled = true;
+    p.clahe.enabled = true;
+    p.clahe.tiles_x = 1;
+    p.clahe.tiles_y = 1;
+    p.clahe.base = 6.0;
+    p.clahe.gain = 3.0;
   } else {
     fail("unknown enhancement preset '{}' (expected one of: {})", name,
          fmt::join(presetNames(), ", "));
@@ -196,11 +204,11 @@ std::string EnhancerParams::toSettingsText() const {
 }
 
 double sigmaMaxPrior(SigmaSource source) {
-  return source == SigmaSource::kIntensity ? 80.0 : 200.0;
+  return source == SigmaSource::kIntensity ? 80.0 : 150.0;
 }
 
 double laplacianVarianceMaxPrior() {
-  return 3000.0;
+  return 1500.0;
 }
 
 }  // namespace lumaslam::enhance
