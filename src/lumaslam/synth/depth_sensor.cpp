@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include <tbb/parallel_for.h>
 #include <opencv2/imgproc.hpp>
 
 #include "lumaslam/core/error.h"
@@ -19,7 +20,7 @@ cv::Mat simulateDepthSensor(const cv::Mat& depth_m, const DepthSensorModel& mode
   cv::dilate(depth_m, local_max, kernel);
   cv::erode(depth_m, local_min, kernel);
   cv::Mat out(depth_m.size(), CV_32F);
-  for (int y = 0; y < depth_m.rows; ++y) {
+  tbb::parallel_for(0, depth_m.rows, [&](int y) {
     const float* z = depth_m.ptr<float>(y);
     const float* hi = local_max.ptr<float>(y);
     const float* lo = local_min.ptr<float>(y);
@@ -37,7 +38,7 @@ cv::Mat simulateDepthSensor(const cv::Mat& depth_m, const DepthSensorModel& mode
       }
       o[x] = d;
     }
-  }
+  });
   Rng rng(key, 0xb10b);
   const int blobs = static_cast<int>(model.dropout_blobs_per_megapixel * depth_m.total() / 1e6f);
   for (int i = 0; i < blobs; ++i) {

@@ -96,6 +96,12 @@ cv::Mat exposeImage(const cv::Mat& radiance, double signal, double gain, int dar
             // One hash per pixel: 21 bits per channel, each the sum of a 10- and an 11-bit uniform
             // (triangular, variance-normalised): close enough to Gaussian for sensor noise.
             const std::uint64_t bits = mix64(row_key ^ static_cast<std::uint64_t>(x));
+            // Shot-noise scale from the pixel's mean signal: one square root per pixel.
+            float mean_e = 0.0f;
+            for (int c = 0; c < channels; ++c)
+              mean_e += std::max(0.0f, in[x * channels + c] * local);
+            mean_e *= electrons_per_unit / static_cast<float>(channels);
+            const float sigma = noise * std::sqrt(mean_e + read2);
             for (int c = 0; c < channels; ++c) {
               const int i = x * channels + c;
               const std::uint64_t part = bits >> (21 * c);
@@ -104,7 +110,7 @@ cv::Mat exposeImage(const cv::Mat& radiance, double signal, double gain, int dar
                    static_cast<float>((part >> 10) & 0x7ff) * (1.0f / 2048.0f) - 1.0f) *
                   2.449f;
               float e = std::max(0.0f, in[i] * local) * electrons_per_unit;
-              if (noise > 0.0f) e += noise * std::sqrt(e + read2) * triangular;
+              if (noise > 0.0f) e += sigma * triangular;
               const float v = std::clamp(e * to_output, 0.0f, static_cast<float>(kLutSize - 1));
               o[i] = table[static_cast<size_t>(v + 0.5f)];
             }
