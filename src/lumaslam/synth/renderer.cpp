@@ -111,14 +111,19 @@ RenderedView renderView(const Scene& scene, const SceneSnapshot& snapshot, const
 
   tbb::parallel_for(
       tbb::blocked_range<int>(0, cam.height, 8), [&](const tbb::blocked_range<int>& rows) {
-        std::vector<int> boxes_in_row, walkers_in_row;
+        // Boxes whose projected bounds cover each 32-pixel block of the current row.
+        constexpr int kBlock = 32;
+        std::vector<std::vector<int>> boxes_in_block((cam.width + kBlock - 1) / kBlock);
+        std::vector<int> walkers_in_row;
         for (int y = rows.begin(); y < rows.end(); ++y) {
-          boxes_in_row.clear();
+          for (auto& block : boxes_in_block) block.clear();
           walkers_in_row.clear();
-          for (int i = 0; i < static_cast<int>(box_rects.size()); ++i)
-            if (y >= box_rects[static_cast<size_t>(i)].y0 &&
-                y <= box_rects[static_cast<size_t>(i)].y1)
-              boxes_in_row.push_back(i);
+          for (int i = 0; i < static_cast<int>(box_rects.size()); ++i) {
+            const ScreenRect& r = box_rects[static_cast<size_t>(i)];
+            if (y < r.y0 || y > r.y1) continue;
+            for (int b = r.x0 / kBlock; b <= r.x1 / kBlock; ++b)
+              boxes_in_block[static_cast<size_t>(b)].push_back(i);
+          }
           for (int i = 0; i < static_cast<int>(walker_rects.size()); ++i)
             if (y >= walker_rects[static_cast<size_t>(i)].y0 &&
                 y <= walker_rects[static_cast<size_t>(i)].y1)
@@ -142,7 +147,7 @@ RenderedView renderView(const Scene& scene, const SceneSnapshot& snapshot, const
                 if (t > 0.0f && t < hit.t) hit = {t, 0, 0, a * 2 + (d[a] > 0.0f ? 1 : 0)};
               }
             }
-            for (const int i : boxes_in_row) {
+            for (const int i : boxes_in_block[static_cast<size_t>(x / kBlock)]) {
               const ScreenRect& r = box_rects[static_cast<size_t>(i)];
               if (x < r.x0 || x > r.x1) continue;
               const BoxInstance& box = snapshot.boxes[static_cast<size_t>(i)];
