@@ -62,7 +62,11 @@ void forEachFrame(const std::string& input, int max_frames, int stride, Visit&& 
     visit(path.stem().string(), io::readImageFile(path, cv::IMREAD_UNCHANGED));
     return;
   }
-  const std::string spec = fs::is_directory(path, ec) ? "folder:" + input : input;
+  const bool is_folder = fs::is_directory(path, ec);
+  if (!is_folder && input.find(':') == std::string::npos) {
+    fail("{}: no such image file or folder (or give a dataset spec KIND:PATH)", input);
+  }
+  const std::string spec = is_folder ? "folder:" + input : input;
   io::ReaderOptions reader_options;
   if (spec.rfind("folder:", 0) == 0) reader_options.image_read_flags = cv::IMREAD_UNCHANGED;
   auto reader = io::openDataset(spec, reader_options);
