@@ -156,7 +156,8 @@ SE3 CameraTrajectory::pose(double real_t) const {
           Eigen::Vector3d(1.0 * std::sin(s), -0.7 * std::cos(s), 1.3 + 0.08 * std::sin(2.0 * s));
       yaw = s + kPi;  // facing away from the centre (towards -y at s = 0)
       yaw += 0.25 * std::sin(s);
-      pitch = 8.0 * kDeg + 4.0 * kDeg * std::sin(3.0 * s);
+      pitch = -10.0 * kDeg +
+              4.0 * kDeg * std::sin(3.0 * s);  // slightly down: floor and furniture in view
       roll = 3.0 * kDeg * std::sin(2.0 * s);
       break;
     }
