@@ -1,0 +1,144 @@
+#include "lumaslam/system.h"
+
+#include <chrono>
+
+#include <opencv2/imgproc.hpp>
+
+#include "lumaslam/core/error.h"
+#include "lumaslam/enhance/enhancer.h"
+#include "lumaslam/mapping/local_mapper.h"
+#include "lumaslam/track/frame_builder.h"
+
+namespace lumaslam {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double msSince(Clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
+
+track::FrameCamera frameCameraFrom(const io::Settings& settings) {
+  const auto camera = settings.camera.atWorkingSize();
+  track::FrameCamera result;
+  result.fx = camera.fx;
+  result.fy = camera.fy;
+  result.cx = camera.cx;
+  result.cy = camera.cy;
+  result.distortion = camera.distortion;
+  result.size = cv::Size(camera.size.width, camera.size.height);
+  result.bf = settings.bf();
+  result.close_depth = settings.closeDepth();
+  return result;
+}
+
+feature::OrbSettings orbSettingsFrom(const io::Settings& settings) {
+  feature::OrbSettings orb;
+  orb.nFeatures = settings.orb.nFeatures;
+  orb.scaleFactor = settings.orb.scaleFactor;
+  orb.nLevels = settings.orb.nLevels;
+  orb.iniThFAST = settings.orb.iniThFAST;
+  orb.minThFAST = settings.orb.minThFAST;
+  return orb;
+}
+
+}  // namespace
+
+System::System(const io::Settings& settings, const SystemOptions& options)
+    : settings_(settings),
+      sequential_(options.sequential.value_or(settings.system.sequential)),
+      map_(std::make_shared<map::Map>()) {
+  if (settings_.sensor != io::SensorType::Rgbd) {
+    fail("{}: sensor '{}' is not supported yet (RGB-D is; stereo and monocular are in progress)",
+         settings_.path.string(), io::toString(settings_.sensor));
+  }
+  auto enhancer_params = settings_.file ? enhance::EnhancerParams::fromSettings(*settings_.file)
+                                        : enhance::EnhancerParams{};
+  if (options.enhance_preset) {
+    enhancer_params = enhance::EnhancerParams::forPreset(*options.enhance_preset);
+  }
+  if (enhancer_params.preset != "off") {
+    enhancer_ = std::make_unique<enhance::Enhancer>(enhancer_params);
+  }
+
+  const auto camera = frameCameraFrom(settings_);
+  frame_builder_ = std::make_unique<track::FrameBuilder>(camera, orbSettingsFrom(settings_));
+  mapping::LocalMapperParams mapper_params;
+  mapper_params.threaded = !sequential_;
+  mapper_ = std::make_unique<mapping::LocalMapper>(map_, camera, frame_builder_->pyramid(),
+                                                   mapper_params);
+  track::TrackerParams tracker_params;
+  tracker_params.max_frames_between_keyframes = std::max(1, static_cast<int>(settings_.camera.fps));
+  tracker_ = std::make_unique<track::Tracker>(map_, *mapper_, camera, frame_builder_->pyramid(),
+                                              frame_builder_->extractor().levels(), tracker_params);
+}
+
+System::~System() {
+  shutdown();
+}
+
+void System::shutdown() {
+  if (mapper_) mapper_->shutdown();
+}
+
+cv::Mat System::toGray(const cv::Mat& image, FrameTiming& timing) {
+  if (image.empty()) fail("empty image");
+  if (image.depth() != CV_8U) fail("expected an 8-bit image, got depth {}", image.depth());
+  if (enhancer_) {
+    const auto start = Clock::now();
+    auto enhanced = enhancer_->enhance(image);
+    timing.enhance = msSince(start);
+    return enhanced.gray;
+  }
+  if (image.channels() == 1) return image;
+  cv::Mat gray;
+  cv::cvtColor(image, gray, image.channels() == 4 ? cv::COLOR_BGRA2GRAY : cv::COLOR_BGR2GRAY);
+  return gray;
+}
+
+FrameResult System::trackRgbd(std::size_t index, double timestamp, const cv::Mat& image,
+                              const cv::Mat& depth, const cv::Mat& dynamic_mask) {
+  const auto start = Clock::now();
+  FrameResult result;
+  const cv::Mat gray = toGray(image, result.timing);
+
+  cv::Mat depth_m;
+  if (depth.type() == CV_16UC1) {
+    depth.convertTo(depth_m, CV_32F, 1.0 / settings_.depth.depthMapFactor);
+  } else if (depth.type() == CV_32FC1) {
+    depth_m = depth;
+  } else {
+    fail("frame {}: depth must be 16-bit raw or 32-bit float metres", index);
+  }
+
+  auto stage = Clock::now();
+  auto frame = frame_builder_->build(index, timestamp, gray, depth_m, dynamic_mask);
+  result.timing.features = msSince(stage);
+  stage = Clock::now();
+  result.outcome = tracker_->track(std::move(frame));
+  result.timing.tracking = msSince(stage);
+  if (sequential_) {
+    stage = Clock::now();
+    mapper_->processPending();
+    result.timing.mapping = msSince(stage);
+  }
+  result.timing.total = msSince(start);
+  return result;
+}
+
+Trajectory System::frameTrajectory() const {
+  return tracker_->trajectory().frames();
+}
+
+Trajectory System::keyFrameTrajectory() const {
+  return track::keyFrameTrajectory(map_->keyFrames());
+}
+
+std::size_t System::keyFrameCount() const {
+  return map_->keyFrameCount();
+}
+
+std::size_t System::mapPointCount() const {
+  return map_->mapPointCount();
+}
+
+}  // namespace lumaslam

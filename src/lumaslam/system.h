@@ -1,0 +1,74 @@
+#pragma once
+// The facade the CLI and tests use: feed frames, get poses. Owns the map, the tracker (runs in
+// the caller's thread) and the local mapper (own thread, or inline when System.sequential).
+#include <memory>
+#include <optional>
+#include <string>
+
+#include <opencv2/core.hpp>
+
+#include "lumaslam/core/pose.h"
+#include "lumaslam/io/settings.h"
+#include "lumaslam/track/tracker.h"
+
+namespace lumaslam {
+
+namespace enhance {
+class Enhancer;
+}
+namespace mapping {
+class LocalMapper;
+}
+namespace track {
+class FrameBuilder;
+}
+
+struct SystemOptions {
+  std::optional<std::string> enhance_preset;  // overrides Enhancement.preset ("off" disables)
+  std::optional<bool> sequential;             // overrides System.sequential
+};
+
+struct FrameTiming {  // milliseconds
+  double enhance = 0, features = 0, tracking = 0, mapping = 0, total = 0;
+};
+
+struct FrameResult {
+  track::TrackingOutcome outcome;
+  FrameTiming timing;
+};
+
+class System {
+ public:
+  explicit System(const io::Settings& settings, const SystemOptions& options = {});
+  ~System();
+  System(const System&) = delete;
+  System& operator=(const System&) = delete;
+
+  // `image`: 8-bit gray or BGR. `depth`: CV_16U raw (divided by DepthMapFactor) or CV_32F
+  // metres. `dynamic_mask`: empty or CV_8U, nonzero where features must not be taken.
+  FrameResult trackRgbd(std::size_t index, double timestamp, const cv::Mat& image,
+                        const cv::Mat& depth, const cv::Mat& dynamic_mask = cv::Mat());
+
+  // Waits for local mapping to finish and stops its thread. Idempotent; the destructor calls it.
+  void shutdown();
+
+  Trajectory frameTrajectory() const;     // every tracked frame, T_w_c
+  Trajectory keyFrameTrajectory() const;  // keyframes only
+  std::size_t keyFrameCount() const;
+  std::size_t mapPointCount() const;
+  const track::Tracker& tracker() const { return *tracker_; }
+  const io::Settings& settings() const { return settings_; }
+
+ private:
+  cv::Mat toGray(const cv::Mat& image, FrameTiming& timing);
+
+  io::Settings settings_;
+  bool sequential_ = false;
+  std::shared_ptr<map::Map> map_;
+  std::unique_ptr<enhance::Enhancer> enhancer_;
+  std::unique_ptr<track::FrameBuilder> frame_builder_;
+  std::unique_ptr<mapping::LocalMapper> mapper_;
+  std::unique_ptr<track::Tracker> tracker_;
+};
+
+}  // namespace lumaslam
