@@ -1,0 +1,36 @@
+#include <memory>
+
+#include "command_registry.h"
+#include "run_pipeline.h"
+
+namespace lumaslam::cli {
+namespace {
+
+const bool registered = registerCommand(
+    "run", "Run SLAM on a dataset; write trajectory, keyframes, timing and summary",
+    [](CLI::App& cmd) -> Runner {
+      auto options = std::make_shared<RunOptions>();
+      auto max_frames = std::make_shared<std::size_t>(0);
+      auto enhance = std::make_shared<std::string>();
+      cmd.add_option("--dataset", options->dataset,
+                     "tum:PATH (RGB-D; stereo and mono are in progress), e.g. a TUM sequence or "
+                     "the output of `lumaslam synth`")
+          ->required();
+      cmd.add_option("--settings", options->settings,
+                     "ORB-SLAM3-style settings YAML (default: PATH/settings.yaml)");
+      cmd.add_option(
+          "--enhance", *enhance,
+          "Enhancement preset overriding Enhancement.preset (off, clahe, paper, best, ...)");
+      cmd.add_option("--out", options->out, "Output folder")->capture_default_str();
+      cmd.add_option("--max-frames", *max_frames, "Stop after this many frames (0: all)");
+      cmd.add_flag("--sequential", options->sequential,
+                   "Run local mapping in the caller's thread (deterministic)");
+      return [options, max_frames, enhance] {
+        if (*max_frames > 0) options->max_frames = *max_frames;
+        if (!enhance->empty()) options->enhance_preset = *enhance;
+        return runPipeline(*options);
+      };
+    });
+
+}  // namespace
+}  // namespace lumaslam::cli

@@ -1,0 +1,117 @@
+#include "run_pipeline.h"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <fstream>
+#include <vector>
+
+#include <spdlog/spdlog.h>
+#include <nlohmann/json.hpp>
+
+#include "lumaslam/core/error.h"
+#include "lumaslam/eval/evaluation.h"
+#include "lumaslam/eval/trajectory_plot.h"
+#include "lumaslam/io/dataset_reader.h"
+#include "lumaslam/io/settings.h"
+#include "lumaslam/io/trajectory_io.h"
+#include "lumaslam/system.h"
+
+namespace lumaslam::cli {
+namespace {
+
+std::filesystem::path datasetPath(const std::string& spec) {
+  const auto colon = spec.find(':');
+  return colon == std::string::npos ? spec : spec.substr(colon + 1);
+}
+
+double median(std::vector<double> values) {
+  if (values.empty()) return 0.0;
+  std::nth_element(values.begin(), values.begin() + values.size() / 2, values.end());
+  return values[values.size() / 2];
+}
+
+}  // namespace
+
+int runPipeline(const RunOptions& options) {
+  auto settings_path = options.settings;
+  if (settings_path.empty()) settings_path = datasetPath(options.dataset) / "settings.yaml";
+  const auto settings = io::loadSettings(settings_path);
+  io::ReaderOptions reader_options;
+  reader_options.max_frames = options.max_frames;
+  auto reader = io::openDataset(options.dataset, reader_options);
+  if (settings.sensor == io::SensorType::Rgbd && !reader->hasDepth()) {
+    fail("{}: the settings are RGB-D but dataset {} has no depth", settings_path.string(),
+         options.dataset);
+  }
+  std::filesystem::create_directories(options.out);
+
+  SystemOptions system_options;
+  system_options.enhance_preset = options.enhance_preset;
+  if (options.sequential) system_options.sequential = true;
+  System system(settings, system_options);
+
+  std::ofstream timing(options.out / "timing.csv");
+  timing
+      << "frame,timestamp,state,inliers,enhance_ms,features_ms,tracking_ms,mapping_ms,total_ms\n";
+  const bool progress = isatty(STDERR_FILENO) != 0;
+  std::vector<double> totals;
+  std::size_t tracked = 0;
+  std::size_t frames = 0;
+  while (auto frame = reader->next()) {
+    const auto result =
+        system.trackRgbd(frame->index, frame->timestamp, frame->image, frame->depth);
+    const auto& t = result.timing;
+    timing << frame->index << ',' << fmt::format("{:.6f}", frame->timestamp) << ','
+           << track::toString(result.outcome.state) << ',' << result.outcome.inliers << ','
+           << fmt::format("{:.3f},{:.3f},{:.3f},{:.3f},{:.3f}", t.enhance, t.features, t.tracking,
+                          t.mapping, t.total)
+           << '\n';
+    totals.push_back(t.total);
+    ++frames;
+    if (result.outcome.state == track::TrackingState::Ok) ++tracked;
+    if (progress) {
+      std::fprintf(stderr, "\rframe %zu/%zu  %s  %.1f ms   ", frames, reader->size(),
+                   track::toString(result.outcome.state), t.total);
+    }
+  }
+  if (progress) std::fprintf(stderr, "\n");
+  if (frames == 0) fail("{}: the dataset delivered no frames", options.dataset);
+  system.shutdown();
+
+  const auto trajectory = system.frameTrajectory();
+  io::writeTrajectory(options.out / "trajectory.txt", trajectory);
+  io::writeTrajectory(options.out / "keyframes.txt", system.keyFrameTrajectory());
+
+  double mean = 0.0;
+  for (double v : totals) mean += v / static_cast<double>(totals.size());
+  nlohmann::json summary = {{"dataset", options.dataset},
+                            {"settings", settings_path.string()},
+                            {"frames", frames},
+                            {"tracked", tracked},
+                            {"lost", frames - tracked},
+                            {"keyframes", system.keyFrameCount()},
+                            {"map_points", system.mapPointCount()},
+                            {"ms_per_frame", {{"mean", mean}, {"median", median(totals)}}}};
+  std::printf("%s: %zu frames, %zu tracked, %zu lost, %zu keyframes, %.1f ms/frame median\n",
+              options.dataset.c_str(), frames, tracked, frames - tracked, system.keyFrameCount(),
+              median(totals));
+
+  const auto ground_truth = reader->groundTruth();
+  if (!ground_truth.empty() && trajectory.size() >= 3) {
+    try {
+      const auto report = eval::evaluate(trajectory, ground_truth, eval::EvaluationOptions{});
+      summary["evaluation"] = eval::toJson(report);
+      eval::writeEvaluationPlot(options.out / "evaluation.svg", report);
+      std::printf("%s", eval::formatTable(report).c_str());
+    } catch (const Error& e) {
+      spdlog::warn("evaluation against ground truth skipped: {}", e.what());
+    }
+  }
+  std::ofstream(options.out / "summary.json") << summary.dump(2) << '\n';
+  std::printf("results in %s\n", options.out.string().c_str());
+  return 0;
+}
+
+}  // namespace lumaslam::cli

@@ -1,0 +1,23 @@
+#pragma once
+// The main job shared by `lumaslam run` and `lumaslam demo`: read a dataset, track every
+// frame, write trajectory.txt, keyframes.txt, timing.csv and summary.json into `out`, and
+// evaluate against the dataset's ground truth when it has one.
+#include <filesystem>
+#include <optional>
+#include <string>
+
+namespace lumaslam::cli {
+
+struct RunOptions {
+  std::filesystem::path settings;  // empty: DATASET_PATH/settings.yaml (synthetic datasets)
+  std::string dataset;             // tum:PATH, euroc:PATH, ...
+  std::optional<std::string> enhance_preset;
+  std::filesystem::path out = "lumaslam_out";
+  std::optional<std::size_t> max_frames;
+  bool sequential = false;
+};
+
+// Returns the process exit code; throws lumaslam::Error for bad input.
+int runPipeline(const RunOptions& options);
+
+}  // namespace lumaslam::cli
