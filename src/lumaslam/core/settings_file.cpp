@@ -22,7 +22,7 @@ constexpr const char* typeName() {
 std::string describe(const cv::FileNode& n) {
   if (n.isInt()) return std::to_string(static_cast<int>(n));
   if (n.isReal()) return std::to_string(static_cast<double>(n));
-  if (n.isString()) return "'" + static_cast<std::string>(n) + "'";
+  if (n.isString()) return fmt::format("'{}'", static_cast<std::string>(n));
   if (n.isSeq()) return "a list";
   if (n.isMap()) return "a map";
   return "an empty value";
