@@ -230,7 +230,8 @@ std::string settingsYaml(const SequenceRenderer& sequence) {
       "Synth.seed: {}\n"
       "Dataset.format: \"{}\"\n"
       "\n"
-      "Camera.type: \"PinHole\"\n"
+      // The stereo pair is rendered row-aligned, so it is an already rectified pair.
+      "Camera.type: \"{}\"\n"
       "Camera.fx: {}\n"
       "Camera.fy: {}\n"
       "Camera.cx: {}\n"
@@ -247,7 +248,7 @@ std::string settingsYaml(const SequenceRenderer& sequence) {
       "Camera.bf: {:.6f}\n"
       "ThDepth: {:.1f}\n",
       sequence.preset().name, sequence.seed(), sequence.preset().name, sequence.seed(),
-      stereo ? "euroc" : "tum", c.fx, c.fy, c.cx, c.cy, c.width, c.height, rig.fps, stereo ? 0 : 1,
+      stereo ? "euroc" : "tum", stereo ? "Rectified" : "PinHole", c.fx, c.fy, c.cx, c.cy, c.width, c.height, rig.fps, stereo ? 0 : 1,
       c.fx * (stereo ? rig.baseline_m : 0.075), stereo ? 35.0 : 40.0);
   if (stereo) {
     const std::string K =
