@@ -1,0 +1,30 @@
+#pragma once
+// Runs the built `lumaslam` binary with arguments; captures stdout + stderr and the exit code.
+#include <sys/wait.h>
+
+#include <array>
+#include <cstdio>
+#include <string>
+
+#include "test_paths.h"
+
+namespace lumaslam::test {
+
+struct CliResult {
+  int exit_code = -1;
+  std::string output;
+};
+
+inline CliResult runCli(const std::string& arguments) {
+  const std::string command = cliPath().string() + " " + arguments + " 2>&1";
+  CliResult result;
+  FILE* pipe = popen(command.c_str(), "r");
+  if (!pipe) return result;
+  std::array<char, 4096> buffer{};
+  while (fgets(buffer.data(), buffer.size(), pipe)) result.output += buffer.data();
+  const int status = pclose(pipe);
+  result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return result;
+}
+
+}  // namespace lumaslam::test
