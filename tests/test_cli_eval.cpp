@@ -9,28 +9,15 @@
 #include <nlohmann/json.hpp>
 
 #include "lumaslam/io/trajectory_io.h"
+#include "test_cli.h"
 #include "test_eval_synthetic.h"
 #include "test_paths.h"
 
 namespace lumaslam {
 namespace {
 
-struct RunResult {
-  int exit_code = -1;
-  std::string output;  // stdout and stderr
-};
-
-RunResult runCli(const std::string& arguments) {
-  const std::string command = test::cliPath().string() + " " + arguments + " 2>&1";
-  RunResult result;
-  FILE* pipe = popen(command.c_str(), "r");
-  if (!pipe) return result;
-  std::array<char, 4096> buffer{};
-  while (fgets(buffer.data(), buffer.size(), pipe)) result.output += buffer.data();
-  const int status = pclose(pipe);
-  result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return result;
-}
+using test::runCli;
+using RunResult = test::CliResult;
 
 nlohmann::json readJson(const std::filesystem::path& path) {
   std::ifstream file(path);
