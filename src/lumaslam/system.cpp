@@ -97,21 +97,37 @@ cv::Mat System::toGray(const cv::Mat& image, FrameTiming& timing) {
 
 FrameResult System::trackRgbd(std::size_t index, double timestamp, const cv::Mat& image,
                               const cv::Mat& depth, const cv::Mat& dynamic_mask) {
+  SensorFrame frame;
+  frame.index = index;
+  frame.timestamp = timestamp;
+  frame.image = image;
+  frame.depth = depth;
+  frame.dynamic_mask = dynamic_mask;
+  return track(frame);
+}
+
+cv::Mat System::depthInMetres(const SensorFrame& frame) const {
+  if (frame.depth.empty()) fail("frame {}: RGB-D tracking needs a depth image", frame.index);
+  cv::Mat depth_m;
+  if (frame.depth.type() == CV_16UC1) {
+    frame.depth.convertTo(depth_m, CV_32F, 1.0 / settings_.depth.depthMapFactor);
+  } else if (frame.depth.type() == CV_32FC1) {
+    depth_m = frame.depth;
+  } else {
+    fail("frame {}: depth must be 16-bit raw or 32-bit float metres", frame.index);
+  }
+  return depth_m;
+}
+
+FrameResult System::track(const SensorFrame& input) {
   const auto start = Clock::now();
   FrameResult result;
-  const cv::Mat gray = toGray(image, result.timing);
-
-  cv::Mat depth_m;
-  if (depth.type() == CV_16UC1) {
-    depth.convertTo(depth_m, CV_32F, 1.0 / settings_.depth.depthMapFactor);
-  } else if (depth.type() == CV_32FC1) {
-    depth_m = depth;
-  } else {
-    fail("frame {}: depth must be 16-bit raw or 32-bit float metres", index);
-  }
+  const cv::Mat gray = toGray(input.image, result.timing);
+  const cv::Mat depth_m = depthInMetres(input);
 
   auto stage = Clock::now();
-  auto frame = frame_builder_->build(index, timestamp, gray, depth_m, dynamic_mask);
+  auto frame =
+      frame_builder_->build(input.index, input.timestamp, gray, depth_m, input.dynamic_mask);
   result.timing.features = msSince(stage);
   stage = Clock::now();
   result.outcome = tracker_->track(std::move(frame));

@@ -32,6 +32,16 @@ struct FrameTiming {  // milliseconds
   double enhance = 0, features = 0, tracking = 0, mapping = 0, total = 0;
 };
 
+// One frame as the sensor delivered it. Which fields are needed depends on Settings::sensor.
+struct SensorFrame {
+  std::size_t index = 0;
+  double timestamp = 0.0;
+  cv::Mat image;         // left / rgb / mono: 8-bit gray or BGR
+  cv::Mat right;         // stereo: right image, same size and type as `image`
+  cv::Mat depth;         // RGB-D: CV_16U raw (divided by DepthMapFactor) or CV_32F metres
+  cv::Mat dynamic_mask;  // optional CV_8U, nonzero where features must not be taken
+};
+
 struct FrameResult {
   track::TrackingOutcome outcome;
   FrameTiming timing;
@@ -44,8 +54,11 @@ class System {
   System(const System&) = delete;
   System& operator=(const System&) = delete;
 
-  // `image`: 8-bit gray or BGR. `depth`: CV_16U raw (divided by DepthMapFactor) or CV_32F
-  // metres. `dynamic_mask`: empty or CV_8U, nonzero where features must not be taken.
+  // Tracks one frame of the configured sensor. Throws Error for input the sensor cannot use
+  // (missing depth / right image, wrong size or type).
+  FrameResult track(const SensorFrame& frame);
+
+  // RGB-D shorthand for track().
   FrameResult trackRgbd(std::size_t index, double timestamp, const cv::Mat& image,
                         const cv::Mat& depth, const cv::Mat& dynamic_mask = cv::Mat());
 
@@ -61,6 +74,7 @@ class System {
 
  private:
   cv::Mat toGray(const cv::Mat& image, FrameTiming& timing);
+  cv::Mat depthInMetres(const SensorFrame& frame) const;
 
   io::Settings settings_;
   bool sequential_ = false;
