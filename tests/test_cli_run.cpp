@@ -2,7 +2,9 @@
 // the evaluation against the generator's ground truth; bad input gives a clear error.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <fstream>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -41,6 +43,39 @@ TEST(CliRun, TracksASyntheticRgbdDatasetAndWritesResults) {
   int rows = 0;
   while (std::getline(timing, line)) ++rows;
   EXPECT_EQ(rows, 61);  // header + one row per frame
+}
+
+TEST(CliRun, RepeatWritesEachRunAndTheirSpread) {
+  TempDir dir("cli_run_repeat");
+  const auto data = dir.path() / "data";
+  const auto out = dir.path() / "out";
+  const auto synth = runCli("synth " + data.string() + " --preset xyz-rgbd --frames 30 --seed 4");
+  ASSERT_EQ(synth.exit_code, 0) << synth.output;
+  const auto run = runCli("run --dataset tum:" + data.string() +
+                          " --enhance off --repeat 3 --out " + out.string());
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+
+  std::ifstream report_file(out / "repeatability.json");
+  ASSERT_TRUE(report_file.good()) << run.output;
+  const auto report = nlohmann::json::parse(report_file);
+  ASSERT_EQ(report["runs"].size(), 3U);
+  std::vector<double> rmse;
+  for (int k = 1; k <= 3; ++k) {
+    const auto run_dir = out / ("run_" + std::to_string(k));
+    EXPECT_TRUE(std::filesystem::exists(run_dir / "trajectory.txt")) << run_dir;
+    std::ifstream summary_file(run_dir / "summary.json");
+    rmse.push_back(nlohmann::json::parse(summary_file)["evaluation"]["ate"]["rmse"].get<double>());
+  }
+  const auto& ate = report["ate_rmse"];
+  EXPECT_DOUBLE_EQ(ate["min"].get<double>(), *std::min_element(rmse.begin(), rmse.end()));
+  EXPECT_DOUBLE_EQ(ate["max"].get<double>(), *std::max_element(rmse.begin(), rmse.end()));
+  EXPECT_LE(ate["min"].get<double>(), ate["median"].get<double>());
+  EXPECT_LE(ate["median"].get<double>(), ate["max"].get<double>());
+  EXPECT_LT(ate["max"].get<double>(), 0.02);
+
+  const auto zero = runCli("run --dataset tum:" + data.string() + " --repeat 0");
+  EXPECT_NE(zero.exit_code, 0);
+  EXPECT_NE(zero.output.find("--repeat"), std::string::npos) << zero.output;
 }
 
 TEST(CliRun, MissingSettingsOrDatasetIsAClearError) {

@@ -2,6 +2,7 @@
 
 #include "command_registry.h"
 #include "run_pipeline.h"
+#include "run_repeat.h"
 
 namespace lumaslam::cli {
 namespace {
@@ -12,6 +13,7 @@ const bool registered = registerCommand(
       auto options = std::make_shared<RunOptions>();
       auto max_frames = std::make_shared<std::size_t>(0);
       auto enhance = std::make_shared<std::string>();
+      auto repeats = std::make_shared<int>(1);
       cmd.add_option("--dataset", options->dataset,
                      "tum:PATH (RGB-D; stereo and mono are in progress), e.g. a TUM sequence or "
                      "the output of `lumaslam synth`")
@@ -25,10 +27,13 @@ const bool registered = registerCommand(
       cmd.add_option("--max-frames", *max_frames, "Stop after this many frames (0: all)");
       cmd.add_flag("--sequential", options->sequential,
                    "Run local mapping in the caller's thread (deterministic)");
-      return [options, max_frames, enhance] {
+      cmd.add_option("--repeat", *repeats,
+                     "Run N times into OUT/run_K and report the min/median/max spread")
+          ->check(CLI::PositiveNumber);
+      return [options, max_frames, enhance, repeats] {
         if (*max_frames > 0) options->max_frames = *max_frames;
         if (!enhance->empty()) options->enhance_preset = *enhance;
-        return runPipeline(*options);
+        return *repeats > 1 ? runRepeated(*options, *repeats) : runPipeline(*options);
       };
     });
 
