@@ -45,6 +45,10 @@ int runPipeline(const RunOptions& options) {
     fail("{}: the settings are RGB-D but dataset {} has no depth", settings_path.string(),
          options.dataset);
   }
+  if (settings.sensor == io::SensorType::Stereo && !reader->isStereo()) {
+    fail("{}: the settings are stereo but dataset {} has no right images", settings_path.string(),
+         options.dataset);
+  }
   std::filesystem::create_directories(options.out);
 
   SystemOptions system_options;

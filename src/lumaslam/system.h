@@ -13,6 +13,9 @@
 
 namespace lumaslam {
 
+namespace camera {
+class StereoRectifier;
+}
 namespace enhance {
 class Enhancer;
 }
@@ -55,7 +58,8 @@ class System {
   System& operator=(const System&) = delete;
 
   // Tracks one frame of the configured sensor. Throws Error for input the sensor cannot use
-  // (missing depth / right image, wrong size or type).
+  // (missing depth / right image, wrong size or type). An unrectified stereo pair (Camera2.*)
+  // is rectified first (timed as part of `features`) and tracked in the rectified left camera.
   FrameResult track(const SensorFrame& frame);
 
   // RGB-D shorthand for track().
@@ -65,21 +69,30 @@ class System {
   // Waits for local mapping to finish and stops its thread. Idempotent; the destructor calls it.
   void shutdown();
 
-  Trajectory frameTrajectory() const;     // every tracked frame, T_w_c
+  // Poses of the left / rgb camera as calibrated (for a rectified pair, converted back from
+  // the rectified camera): T_w_c, world = that camera at the first keyframe.
+  Trajectory frameTrajectory() const;     // every tracked frame
   Trajectory keyFrameTrajectory() const;  // keyframes only
   std::size_t keyFrameCount() const;
   std::size_t mapPointCount() const;
   const track::Tracker& tracker() const { return *tracker_; }
   const io::Settings& settings() const { return settings_; }
+  // The camera tracking works in (the rectified one for an unrectified stereo pair).
+  const track::FrameCamera& frameCamera() const;
 
  private:
   cv::Mat toGray(const cv::Mat& image, FrameTiming& timing);
   cv::Mat depthInMetres(const SensorFrame& frame) const;
+  cv::Mat rightGray(const cv::Mat& image, FrameTiming& timing);  // stereo right image
+  track::Frame buildStereoFrame(const SensorFrame& frame, FrameTiming& timing);
+  Trajectory toCalibratedCamera(Trajectory trajectory) const;
 
   io::Settings settings_;
   bool sequential_ = false;
   std::shared_ptr<map::Map> map_;
   std::unique_ptr<enhance::Enhancer> enhancer_;
+  std::unique_ptr<enhance::Enhancer> right_enhancer_;   // stereo: the right image's own
+  std::unique_ptr<camera::StereoRectifier> rectifier_;  // unrectified stereo pairs only
   std::unique_ptr<track::FrameBuilder> frame_builder_;
   std::unique_ptr<mapping::LocalMapper> mapper_;
   std::unique_ptr<track::Tracker> tracker_;
