@@ -1,16 +1,18 @@
 // Stereo front end on the real EuRoC V1_01 pair (752x480, rectified once with the dataset's
 // calibration; rectification itself is BM_StereoRectifyPair in bench_camera.cpp):
-// StereoMatcher alone (1000 features per image), and a whole stereo frame
-// (FrameBuilder::buildStereo: both extractions concurrently + matching).
+// StereoMatcher alone (1000 features per image, after each enhancement preset), and a whole stereo
+// frame (FrameBuilder::buildStereo: both extractions concurrently + matching).
 #include <algorithm>
 #include <array>
 #include <filesystem>
 #include <optional>
+#include <string>
 #include <tuple>
 
 #include <benchmark/benchmark.h>
 
 #include "lumaslam/camera/stereo_rectifier.h"
+#include "lumaslam/enhance/enhancer.h"
 #include "lumaslam/feature/stereo_matcher.h"
 #include "lumaslam/io/dataset_reader.h"
 #include "lumaslam/track/frame_builder.h"
@@ -64,12 +66,23 @@ track::FrameCamera frameCameraOf(const camera::StereoRectifier& rectifier) {
   return camera;
 }
 
+// Argument: enhancement preset applied to both images first (each with its own Enhancer, as
+// System does), to count what it does to the number of stereo matches.
+const char* const kPresets[] = {"off", "best", "clahe", "paper"};
+
+cv::Mat enhanced(const cv::Mat& image, const char* preset) {
+  if (std::string(preset) == "off") return image;
+  enhance::Enhancer enhancer(enhance::EnhancerParams::forPreset(preset));
+  return enhancer.enhance(image).gray;
+}
+
 void BM_StereoMatch(benchmark::State& state) {
   const auto& pair = eurocPair();
   if (!pair.rectifier) return state.SkipWithError("EuRoC micro excerpt missing");
+  const char* preset = kPresets[state.range(0)];
   const feature::OrbExtractor extractor{feature::OrbSettings{}};
-  const auto left = extractor.extract(pair.left);
-  const auto right = extractor.extract(pair.right);
+  const auto left = extractor.extract(enhanced(pair.left, preset));
+  const auto right = extractor.extract(enhanced(pair.right, preset));
   feature::StereoMatcherParams params;
   params.bf = pair.rectifier->bf();
   params.minDepth = pair.rectifier->baseline();
@@ -79,11 +92,11 @@ void BM_StereoMatch(benchmark::State& state) {
     matches = matcher.match(left, right);
     benchmark::DoNotOptimize(matches.depth.data());
   }
-  state.SetLabel("752x480");
+  state.SetLabel(std::string("752x480, enhancement ") + preset);
   state.counters["features"] = static_cast<double>(left.keypoints.size());
   state.counters["matched"] = matches.matched;
 }
-BENCHMARK(BM_StereoMatch)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_StereoMatch)->ArgNames({"enhance"})->DenseRange(0, 3)->Unit(benchmark::kMillisecond);
 
 void BM_StereoFrame(benchmark::State& state) {
   const auto& pair = eurocPair();

@@ -97,6 +97,9 @@ TEST(StereoMatcher, MatchesSyntheticPairWithTrueDisparity) {
   EXPECT_GT(matches.matched, static_cast<int>(left.keypoints.size() * 4 / 10));
   const auto errors = disparityErrors(left, matches, pair.bf, pair.depth);
   ASSERT_EQ(errors.size(), static_cast<std::size_t>(matches.matched));
+  std::printf("%d of %zu matched, %.1f%% within 1 px of the true disparity, median error %.3f px\n",
+              matches.matched, left.keypoints.size(), 100.0 * fractionBelow(errors, 1.0),
+              median(errors));
   // Keypoints on depth edges see foreground or background: a few large errors are truth
   // sampling, not matching errors.
   EXPECT_GT(fractionBelow(errors, 1.0), 0.9);
@@ -129,6 +132,8 @@ TEST(StereoMatcher, RefinesToSubPixelDisparity) {
     if (matches.uRight[i] >= 0)
       errors.push_back(std::abs(left.keypoints[i].pt.x - matches.uRight[i] - shift));
   }
+  std::printf("shift %.1f px: median error %.3f px, %.1f%% under 0.5 px\n", shift, median(errors),
+              100.0 * fractionBelow(errors, 0.5));
   // Whole-pixel matching alone would be 0.4 px off everywhere on level 0.
   EXPECT_LT(median(errors), 0.15);
   EXPECT_GT(fractionBelow(errors, 0.5), 0.95);

@@ -3,6 +3,7 @@
 #include <chrono>
 #include <tuple>
 
+#include <spdlog/spdlog.h>
 #include <opencv2/imgproc.hpp>
 
 #include "lumaslam/camera/stereo_rectifier.h"
@@ -67,6 +68,12 @@ System::System(const io::Settings& settings, const SystemOptions& options)
   if (settings_.sensor == io::SensorType::Stereo && settings_.stereo && settings_.stereo->right) {
     rectifier_ =
         std::make_unique<camera::StereoRectifier>(camera::StereoRectifier::fromSettings(settings_));
+    const auto& k = rectifier_->rectifiedCamera();
+    spdlog::info(
+        "{}: stereo pair rectified: fx={:.3f} fy={:.3f} cx={:.3f} cy={:.3f}, baseline {:.4f} m, "
+        "bf {:.3f}",
+        settings_.path.string(), k.fx(), k.fy(), k.cx(), k.cy(), rectifier_->baseline(),
+        rectifier_->bf());
   }
   auto enhancer_params = settings_.file ? enhance::EnhancerParams::fromSettings(*settings_.file)
                                         : enhance::EnhancerParams{};

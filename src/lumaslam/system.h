@@ -42,7 +42,8 @@ struct SensorFrame {
   cv::Mat image;         // left / rgb / mono: 8-bit gray or BGR
   cv::Mat right;         // stereo: right image, same size and type as `image`
   cv::Mat depth;         // RGB-D: CV_16U raw (divided by DepthMapFactor) or CV_32F metres
-  cv::Mat dynamic_mask;  // optional CV_8U, nonzero where features must not be taken
+  cv::Mat dynamic_mask;  // optional CV_8U in `image`'s pixels (rectified with it), nonzero where
+                         // features must not be taken
 };
 
 struct FrameResult {
