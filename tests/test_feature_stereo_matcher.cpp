@@ -42,6 +42,15 @@ StereoPair syntheticPair(int index) {
   return pair;
 }
 
+// `image` moved `disparity` px to the left (bilinear): the right view of a fronto-parallel
+// scene, every disparity equal to `disparity`.
+cv::Mat movedLeft(const cv::Mat& image, double disparity) {
+  cv::Mat moved;
+  const cv::Mat move = (cv::Mat_<double>(2, 3) << 1, 0, -disparity, 0, 1, 0);
+  cv::warpAffine(image, moved, move, image.size(), cv::INTER_LINEAR, cv::BORDER_REFLECT);
+  return moved;
+}
+
 feature::OrbExtractor makeExtractor() {
   feature::OrbSettings settings;
   settings.nFeatures = 1000;
@@ -118,9 +127,7 @@ TEST(StereoMatcher, RefinesToSubPixelDisparity) {
   // The right image is the left one moved 7.4 px to the left: every disparity is 7.4.
   const auto pair = syntheticPair(0);
   const double shift = 7.4;
-  cv::Mat right;
-  const cv::Mat move = (cv::Mat_<double>(2, 3) << 1, 0, -shift, 0, 1, 0);
-  cv::warpAffine(pair.left, right, move, pair.left.size(), cv::INTER_LINEAR, cv::BORDER_REFLECT);
+  const cv::Mat right = movedLeft(pair.left, shift);
   const auto extractor = makeExtractor();
   const auto matcher = makeMatcher(extractor, pair.bf, pair.baseline);
   const auto left = extractor.extract(pair.left);
@@ -141,9 +148,7 @@ TEST(StereoMatcher, RefinesToSubPixelDisparity) {
 
 TEST(StereoMatcher, KeepsToTheDisparityRange) {
   const auto pair = syntheticPair(0);
-  cv::Mat right;
-  const cv::Mat move = (cv::Mat_<double>(2, 3) << 1, 0, -12.0, 0, 1, 0);
-  cv::warpAffine(pair.left, right, move, pair.left.size(), cv::INTER_LINEAR, cv::BORDER_REFLECT);
+  const cv::Mat right = movedLeft(pair.left, 12.0);
   const auto extractor = makeExtractor();
   const auto left = extractor.extract(pair.left);
   const auto right_features = extractor.extract(right);
@@ -203,9 +208,7 @@ TEST(StereoMatcher, LeavesAmbiguousFeaturesUnmatched) {
   // left features in that band have two equally good candidates inside the disparity range.
   const auto pair = syntheticPair(0);
   const double shift = 6.0;
-  cv::Mat right;
-  const cv::Mat move = (cv::Mat_<double>(2, 3) << 1, 0, -shift, 0, 1, 0);
-  cv::warpAffine(pair.left, right, move, pair.left.size(), cv::INTER_LINEAR, cv::BORDER_REFLECT);
+  cv::Mat right = movedLeft(pair.left, shift);
   const cv::Range band(300, 420);
   right.colRange(band).copyTo(right.colRange(band.start - 100, band.end - 100));
 
@@ -250,10 +253,8 @@ TEST(StereoMatcher, AmbiguityCheckCutsWrongMatchesInRepeatedTexture) {
   cv::Mat left;
   cv::repeat(tile, 1, 752 / 24 + 1, left);
   left = left.colRange(0, 752).clone();
-  cv::Mat right;
   const double shift = 5.0;
-  const cv::Mat move = (cv::Mat_<double>(2, 3) << 1, 0, -shift, 0, 1, 0);
-  cv::warpAffine(left, right, move, left.size(), cv::INTER_LINEAR, cv::BORDER_REFLECT);
+  const cv::Mat right = movedLeft(left, shift);
 
   const auto extractor = makeExtractor();
   const auto features = extractor.extract(left);

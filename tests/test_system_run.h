@@ -1,6 +1,9 @@
 #pragma once
 // Runs the System on a synthetic preset (RGB-D or stereo, with the Settings the generator
 // writes) and evaluates the trajectory against the ground truth: shared by test_system_*.
+#include <functional>
+#include <string>
+
 #include <spdlog/spdlog.h>
 
 #include "lumaslam/core/settings_file.h"
@@ -19,10 +22,15 @@ struct RunResult {
   std::size_t keyframes = 0;
 };
 
-inline io::Settings presetSettings(const synth::SequenceRenderer& sequence) {
+// The settings.yaml the generator writes for the sequence, optionally edited first.
+using SettingsEdit = std::function<std::string(std::string)>;
+inline io::Settings presetSettings(const synth::SequenceRenderer& sequence,
+                                   const SettingsEdit& edit = {}) {
   const std::string name = sequence.preset().name;
+  std::string yaml = synth::settingsYaml(sequence);
+  if (edit) yaml = edit(std::move(yaml));
   auto file = std::make_shared<const core::SettingsFile>(
-      core::SettingsFile::fromString(synth::settingsYaml(sequence), name + ".yaml"));
+      core::SettingsFile::fromString(yaml, name + ".yaml"));
   return io::Settings::fromFile(file);
 }
 
@@ -37,12 +45,13 @@ inline SensorFrame sensorFrame(const synth::Frame& frame) {
   return input;
 }
 
-inline RunResult runOnPreset(const std::string& preset, int frames, std::uint64_t seed) {
+inline RunResult runOnPreset(const std::string& preset, int frames, std::uint64_t seed,
+                             const SettingsEdit& edit = {}) {
   const synth::SequenceRenderer sequence(synth::findPreset(preset), frames, seed);
   SystemOptions options;
   options.enhance_preset = "off";
   options.sequential = true;
-  System system(presetSettings(sequence), options);
+  System system(presetSettings(sequence, edit), options);
   Trajectory ground_truth;
   RunResult run;
   for (int i = 0; i < frames; ++i) {

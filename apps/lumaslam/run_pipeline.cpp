@@ -64,13 +64,7 @@ int runPipeline(const RunOptions& options) {
   std::size_t tracked = 0;
   std::size_t frames = 0;
   while (auto frame = reader->next()) {
-    SensorFrame input;
-    input.index = frame->index;
-    input.timestamp = frame->timestamp;
-    input.image = frame->image;
-    input.right = frame->right;
-    input.depth = frame->depth;
-    const auto result = system.track(input);
+    const auto result = system.track(toSensorFrame(*frame));
     const auto& t = result.timing;
     timing << frame->index << ',' << fmt::format("{:.6f}", frame->timestamp) << ','
            << track::toString(result.outcome.state) << ',' << result.outcome.inliers << ','

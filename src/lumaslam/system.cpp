@@ -9,6 +9,7 @@
 #include "lumaslam/camera/stereo_rectifier.h"
 #include "lumaslam/core/error.h"
 #include "lumaslam/enhance/enhancer.h"
+#include "lumaslam/io/dataset_reader.h"
 #include "lumaslam/mapping/local_mapper.h"
 #include "lumaslam/track/frame_builder.h"
 
@@ -72,8 +73,8 @@ System::System(const io::Settings& settings, const SystemOptions& options)
     spdlog::info(
         "{}: stereo pair rectified: fx={:.3f} fy={:.3f} cx={:.3f} cy={:.3f}, baseline {:.4f} m, "
         "bf {:.3f}",
-        settings_.path.string(), k.fx(), k.fy(), k.cx(), k.cy(), rectifier_->baseline(),
-        rectifier_->bf());
+        settings_.file ? settings_.file->origin() : settings_.path.string(), k.fx(), k.fy(), k.cx(),
+        k.cy(), rectifier_->baseline(), rectifier_->bf());
   }
   auto enhancer_params = settings_.file ? enhance::EnhancerParams::fromSettings(*settings_.file)
                                         : enhance::EnhancerParams{};
@@ -137,6 +138,16 @@ cv::Mat System::rightGray(const cv::Mat& image, FrameTiming& timing) {
   auto enhanced = right_enhancer_->enhance(image);
   timing.enhance += msSince(start);
   return enhanced.gray;
+}
+
+SensorFrame toSensorFrame(const io::FrameData& frame) {
+  SensorFrame input;
+  input.index = frame.index;
+  input.timestamp = frame.timestamp;
+  input.image = frame.image;
+  input.right = frame.right;
+  input.depth = frame.depth;
+  return input;
 }
 
 FrameResult System::trackRgbd(std::size_t index, double timestamp, const cv::Mat& image,

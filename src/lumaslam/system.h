@@ -19,6 +19,9 @@ class StereoRectifier;
 namespace enhance {
 class Enhancer;
 }
+namespace io {
+struct FrameData;
+}
 namespace mapping {
 class LocalMapper;
 }
@@ -45,6 +48,9 @@ struct SensorFrame {
   cv::Mat dynamic_mask;  // optional CV_8U in `image`'s pixels (rectified with it), nonzero where
                          // features must not be taken
 };
+
+// A dataset frame as the sensor input (image, right, depth; no mask).
+SensorFrame toSensorFrame(const io::FrameData& frame);
 
 struct FrameResult {
   track::TrackingOutcome outcome;
