@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <regex>
 #include <stdexcept>
 #include <string>
 
@@ -102,10 +103,32 @@ TEST(SystemStereo, MissingOrMismatchedRightImageIsAClearError) {
   cv::cvtColor(input.right, gray_right.right, cv::COLOR_BGR2GRAY);
   EXPECT_THROW(system.track(gray_right), Error);
 
+  auto wrong_mask = input;
+  wrong_mask.dynamic_mask = cv::Mat::zeros(10, 10, CV_8UC1);
+  EXPECT_THROW(system.track(wrong_mask), Error);
+
   // After the errors, a good frame still initialises the map.
   const auto result = system.track(input);
   EXPECT_EQ(result.outcome.state, track::TrackingState::Ok);
   EXPECT_GT(system.mapPointCount(), 300U);
+}
+
+TEST(SystemStereo, DistortedPairWithoutSecondCalibrationIsRejected) {
+  // A PinHole pair with only camera 1 and Stereo.b is taken as rectified (ORB-SLAM2 files):
+  // with distortion, its rows cannot agree, so the System refuses it.
+  const synth::SequenceRenderer sequence(synth::findPreset("xyz-stereo"), 1, 1);
+  const auto distorted = [](std::string yaml) {
+    yaml = std::regex_replace(yaml, std::regex("Camera.type: \"Rectified\""),
+                              "Camera.type: \"PinHole\"");
+    yaml = std::regex_replace(yaml, std::regex("Camera.k1: 0.0"), "Camera.k1: -0.28");
+    return std::regex_replace(yaml, std::regex("Stereo.T_c1_c2: !!opencv-matrix\n(  .*\n)+"), "");
+  };
+  try {
+    System system(test::presetSettings(sequence, distorted));
+    FAIL() << "no error for a distorted pair without Camera2.*";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("distortion"), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace

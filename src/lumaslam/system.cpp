@@ -66,7 +66,15 @@ System::System(const io::Settings& settings, const SystemOptions& options)
     fail("{}: sensor '{}' is not supported yet (RGB-D and stereo are; monocular is in progress)",
          settings_.path.string(), io::toString(settings_.sensor));
   }
-  if (settings_.sensor == io::SensorType::Stereo && settings_.stereo && settings_.stereo->right) {
+  const bool stereo = settings_.sensor == io::SensorType::Stereo;
+  if (stereo && settings_.stereo && !settings_.stereo->right && settings_.camera.hasDistortion()) {
+    fail(
+        "{}: a stereo pair without Camera2.* is taken as rectified, but camera 1 has distortion; "
+        "give Camera2.* and Stereo.T_c1_c2 so that the System rectifies it, or rectified images "
+        "with zero distortion",
+        settings_.path.string());
+  }
+  if (stereo && settings_.stereo && settings_.stereo->right) {
     rectifier_ =
         std::make_unique<camera::StereoRectifier>(camera::StereoRectifier::fromSettings(settings_));
     const auto& k = rectifier_->rectifiedCamera();
@@ -84,8 +92,7 @@ System::System(const io::Settings& settings, const SystemOptions& options)
   if (enhancer_params.preset != "off") {
     enhancer_ = std::make_unique<enhance::Enhancer>(enhancer_params);
     // The right image gets its own online statistics (the enhancer learns from every frame).
-    if (settings_.sensor == io::SensorType::Stereo)
-      right_enhancer_ = std::make_unique<enhance::Enhancer>(enhancer_params);
+    if (stereo) right_enhancer_ = std::make_unique<enhance::Enhancer>(enhancer_params);
   }
 
   const auto camera = frameCameraFrom(settings_, rectifier_.get());
@@ -96,7 +103,7 @@ System::System(const io::Settings& settings, const SystemOptions& options)
                                                    mapper_params);
   track::TrackerParams tracker_params;
   tracker_params.max_frames_between_keyframes = std::max(1, static_cast<int>(settings_.camera.fps));
-  if (settings_.sensor == io::SensorType::Stereo) {
+  if (stereo) {
     // ORB-SLAM starts a stereo map from a frame with > 500 keypoints, of which typically half
     // have a stereo match; 500 matches would delay EuRoC V1_01 by 6 frames with enhancement
     // (~480 matches of 1200 features per frame, against ~580 without).
@@ -182,6 +189,10 @@ track::Frame System::buildStereoFrame(const SensorFrame& frame, FrameTiming& tim
          frame.right.cols, frame.right.rows, cv::typeToString(frame.right.type()), frame.image.cols,
          frame.image.rows, cv::typeToString(frame.image.type()));
   }
+  if (!frame.dynamic_mask.empty() && frame.dynamic_mask.size() != frame.image.size()) {
+    fail("frame {}: the dynamic mask is {}x{}, the image {}x{}", frame.index,
+         frame.dynamic_mask.cols, frame.dynamic_mask.rows, frame.image.cols, frame.image.rows);
+  }
   const auto start = Clock::now();
   cv::Mat left = frame.image;
   cv::Mat right = frame.right;
@@ -220,7 +231,7 @@ FrameResult System::track(const SensorFrame& input) {
   result.outcome = tracker_->track(std::move(*frame));
   result.timing.tracking = msSince(stage);
   if (rectifier_ && result.outcome.T_w_c) {
-    result.outcome.T_w_c = toCalibratedCamera({{input.timestamp, *result.outcome.T_w_c}})[0].T_w_c;
+    result.outcome.T_w_c = toCalibratedCamera(*result.outcome.T_w_c);
   }
   if (sequential_) {
     stage = Clock::now();
@@ -234,12 +245,15 @@ FrameResult System::track(const SensorFrame& input) {
 // Tracking runs in the rectified left camera, p_rect = R_rect_c1 * p_c1 (same centre): the
 // calibrated camera's pose is T_c1_rect * T_w_rect * T_rect_c1, its world being the calibrated
 // camera at the first keyframe instead of the rectified one.
-Trajectory System::toCalibratedCamera(Trajectory trajectory) const {
-  if (!rectifier_) return trajectory;
+SE3 System::toCalibratedCamera(const SE3& T_w_c) const {
+  if (!rectifier_) return T_w_c;
   SE3 T_rect_c1 = SE3::Identity();
   T_rect_c1.linear() = rectifier_->R_rect_c1();
-  const SE3 T_c1_rect = T_rect_c1.inverse();
-  for (auto& pose : trajectory) pose.T_w_c = T_c1_rect * pose.T_w_c * T_rect_c1;
+  return T_rect_c1.inverse() * T_w_c * T_rect_c1;
+}
+
+Trajectory System::toCalibratedCamera(Trajectory trajectory) const {
+  for (auto& pose : trajectory) pose.T_w_c = toCalibratedCamera(pose.T_w_c);
   return trajectory;
 }
 

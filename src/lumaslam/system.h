@@ -92,6 +92,7 @@ class System {
   cv::Mat depthInMetres(const SensorFrame& frame) const;
   cv::Mat rightGray(const cv::Mat& image, FrameTiming& timing);  // stereo right image
   track::Frame buildStereoFrame(const SensorFrame& frame, FrameTiming& timing);
+  SE3 toCalibratedCamera(const SE3& T_w_c) const;  // identity unless rectifying
   Trajectory toCalibratedCamera(Trajectory trajectory) const;
 
   io::Settings settings_;
