@@ -15,8 +15,8 @@ const bool registered = registerCommand(
       auto enhance = std::make_shared<std::string>();
       auto repeats = std::make_shared<int>(1);
       cmd.add_option("--dataset", options->dataset,
-                     "tum:PATH (RGB-D; stereo and mono are in progress), e.g. a TUM sequence or "
-                     "the output of `lumaslam synth`")
+                     "tum:PATH (RGB-D), euroc:PATH or kitti:PATH (stereo; mono is in progress), "
+                     "e.g. a dataset or the output of `lumaslam synth`")
           ->required();
       cmd.add_option("--settings", options->settings,
                      "ORB-SLAM3-style settings YAML (default: PATH/settings.yaml)");

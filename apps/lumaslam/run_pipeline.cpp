@@ -45,6 +45,10 @@ int runPipeline(const RunOptions& options) {
     fail("{}: the settings are RGB-D but dataset {} has no depth", settings_path.string(),
          options.dataset);
   }
+  if (settings.sensor == io::SensorType::Stereo && !reader->isStereo()) {
+    fail("{}: the settings are stereo but dataset {} has no right images", settings_path.string(),
+         options.dataset);
+  }
   std::filesystem::create_directories(options.out);
 
   SystemOptions system_options;
@@ -60,13 +64,7 @@ int runPipeline(const RunOptions& options) {
   std::size_t tracked = 0;
   std::size_t frames = 0;
   while (auto frame = reader->next()) {
-    SensorFrame input;
-    input.index = frame->index;
-    input.timestamp = frame->timestamp;
-    input.image = frame->image;
-    input.right = frame->right;
-    input.depth = frame->depth;
-    const auto result = system.track(input);
+    const auto result = system.track(toSensorFrame(*frame));
     const auto& t = result.timing;
     timing << frame->index << ',' << fmt::format("{:.6f}", frame->timestamp) << ','
            << track::toString(result.outcome.state) << ',' << result.outcome.inliers << ','

@@ -1,11 +1,15 @@
 #include "lumaslam/system.h"
 
 #include <chrono>
+#include <tuple>
 
+#include <spdlog/spdlog.h>
 #include <opencv2/imgproc.hpp>
 
+#include "lumaslam/camera/stereo_rectifier.h"
 #include "lumaslam/core/error.h"
 #include "lumaslam/enhance/enhancer.h"
+#include "lumaslam/io/dataset_reader.h"
 #include "lumaslam/mapping/local_mapper.h"
 #include "lumaslam/track/frame_builder.h"
 
@@ -17,7 +21,8 @@ double msSince(Clock::time_point start) {
   return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
 }
 
-track::FrameCamera frameCameraFrom(const io::Settings& settings) {
+track::FrameCamera frameCameraFrom(const io::Settings& settings,
+                                   const camera::StereoRectifier* rectifier) {
   const auto camera = settings.camera.atWorkingSize();
   track::FrameCamera result;
   result.fx = camera.fx;
@@ -28,6 +33,16 @@ track::FrameCamera frameCameraFrom(const io::Settings& settings) {
   result.size = cv::Size(camera.size.width, camera.size.height);
   result.bf = settings.bf();
   result.close_depth = settings.closeDepth();
+  if (rectifier) {  // unrectified pair: track in the common camera of the rectified images
+    const auto& rectified = rectifier->rectifiedCamera();
+    result.fx = rectified.fx();
+    result.fy = rectified.fy();
+    result.cx = rectified.cx();
+    result.cy = rectified.cy();
+    result.distortion = {};
+    result.bf = rectifier->bf();
+    result.close_depth = settings.depth.thDepth * rectifier->baseline();
+  }
   return result;
 }
 
@@ -47,9 +62,27 @@ System::System(const io::Settings& settings, const SystemOptions& options)
     : settings_(settings),
       sequential_(options.sequential.value_or(settings.system.sequential)),
       map_(std::make_shared<map::Map>()) {
-  if (settings_.sensor != io::SensorType::Rgbd) {
-    fail("{}: sensor '{}' is not supported yet (RGB-D is; stereo and monocular are in progress)",
+  if (settings_.sensor == io::SensorType::Monocular) {
+    fail("{}: sensor '{}' is not supported yet (RGB-D and stereo are; monocular is in progress)",
          settings_.path.string(), io::toString(settings_.sensor));
+  }
+  const bool stereo = settings_.sensor == io::SensorType::Stereo;
+  if (stereo && settings_.stereo && !settings_.stereo->right && settings_.camera.hasDistortion()) {
+    fail(
+        "{}: a stereo pair without Camera2.* is taken as rectified, but camera 1 has distortion; "
+        "give Camera2.* and Stereo.T_c1_c2 so that the System rectifies it, or rectified images "
+        "with zero distortion",
+        settings_.path.string());
+  }
+  if (stereo && settings_.stereo && settings_.stereo->right) {
+    rectifier_ =
+        std::make_unique<camera::StereoRectifier>(camera::StereoRectifier::fromSettings(settings_));
+    const auto& k = rectifier_->rectifiedCamera();
+    spdlog::info(
+        "{}: stereo pair rectified: fx={:.3f} fy={:.3f} cx={:.3f} cy={:.3f}, baseline {:.4f} m, "
+        "bf {:.3f}",
+        settings_.file ? settings_.file->origin() : settings_.path.string(), k.fx(), k.fy(), k.cx(),
+        k.cy(), rectifier_->baseline(), rectifier_->bf());
   }
   auto enhancer_params = settings_.file ? enhance::EnhancerParams::fromSettings(*settings_.file)
                                         : enhance::EnhancerParams{};
@@ -58,9 +91,11 @@ System::System(const io::Settings& settings, const SystemOptions& options)
   }
   if (enhancer_params.preset != "off") {
     enhancer_ = std::make_unique<enhance::Enhancer>(enhancer_params);
+    // The right image gets its own online statistics (the enhancer learns from every frame).
+    if (stereo) right_enhancer_ = std::make_unique<enhance::Enhancer>(enhancer_params);
   }
 
-  const auto camera = frameCameraFrom(settings_);
+  const auto camera = frameCameraFrom(settings_, rectifier_.get());
   frame_builder_ = std::make_unique<track::FrameBuilder>(camera, orbSettingsFrom(settings_));
   mapping::LocalMapperParams mapper_params;
   mapper_params.threaded = !sequential_;
@@ -68,6 +103,12 @@ System::System(const io::Settings& settings, const SystemOptions& options)
                                                    mapper_params);
   track::TrackerParams tracker_params;
   tracker_params.max_frames_between_keyframes = std::max(1, static_cast<int>(settings_.camera.fps));
+  if (stereo) {
+    // ORB-SLAM starts a stereo map from a frame with > 500 keypoints, of which typically half
+    // have a stereo match; 500 matches would delay EuRoC V1_01 by 6 frames with enhancement
+    // (~480 matches of 1200 features per frame, against ~580 without).
+    tracker_params.min_initial_features = 250;
+  }
   tracker_ = std::make_unique<track::Tracker>(map_, *mapper_, camera, frame_builder_->pyramid(),
                                               frame_builder_->extractor().levels(), tracker_params);
 }
@@ -95,6 +136,27 @@ cv::Mat System::toGray(const cv::Mat& image, FrameTiming& timing) {
   return gray;
 }
 
+cv::Mat System::rightGray(const cv::Mat& image, FrameTiming& timing) {
+  if (!right_enhancer_) {
+    FrameTiming unused;
+    return toGray(image, unused);
+  }
+  const auto start = Clock::now();
+  auto enhanced = right_enhancer_->enhance(image);
+  timing.enhance += msSince(start);
+  return enhanced.gray;
+}
+
+SensorFrame toSensorFrame(const io::FrameData& frame) {
+  SensorFrame input;
+  input.index = frame.index;
+  input.timestamp = frame.timestamp;
+  input.image = frame.image;
+  input.right = frame.right;
+  input.depth = frame.depth;
+  return input;
+}
+
 FrameResult System::trackRgbd(std::size_t index, double timestamp, const cv::Mat& image,
                               const cv::Mat& depth, const cv::Mat& dynamic_mask) {
   SensorFrame frame;
@@ -119,19 +181,58 @@ cv::Mat System::depthInMetres(const SensorFrame& frame) const {
   return depth_m;
 }
 
+track::Frame System::buildStereoFrame(const SensorFrame& frame, FrameTiming& timing) {
+  if (frame.image.empty()) fail("frame {}: the left image is empty", frame.index);
+  if (frame.right.empty()) fail("frame {}: stereo tracking needs a right image", frame.index);
+  if (frame.right.size() != frame.image.size() || frame.right.type() != frame.image.type()) {
+    fail("frame {}: right image {}x{} ({}) differs from the left {}x{} ({})", frame.index,
+         frame.right.cols, frame.right.rows, cv::typeToString(frame.right.type()), frame.image.cols,
+         frame.image.rows, cv::typeToString(frame.image.type()));
+  }
+  if (!frame.dynamic_mask.empty() && frame.dynamic_mask.size() != frame.image.size()) {
+    fail("frame {}: the dynamic mask is {}x{}, the image {}x{}", frame.index,
+         frame.dynamic_mask.cols, frame.dynamic_mask.rows, frame.image.cols, frame.image.rows);
+  }
+  const auto start = Clock::now();
+  cv::Mat left = frame.image;
+  cv::Mat right = frame.right;
+  cv::Mat mask = frame.dynamic_mask;
+  if (rectifier_) {
+    std::tie(left, right) = rectifier_->rectify(left, right);
+    if (!mask.empty()) {
+      mask = rectifier_->rectifyLeft(mask);
+    }
+  }
+  const double rectify_ms = msSince(start);
+  const cv::Mat gray_left = toGray(left, timing);
+  const cv::Mat gray_right = rightGray(right, timing);
+
+  const auto stage = Clock::now();
+  auto built =
+      frame_builder_->buildStereo(frame.index, frame.timestamp, gray_left, gray_right, mask);
+  timing.features = rectify_ms + msSince(stage);
+  return built;
+}
+
 FrameResult System::track(const SensorFrame& input) {
   const auto start = Clock::now();
   FrameResult result;
-  const cv::Mat gray = toGray(input.image, result.timing);
-  const cv::Mat depth_m = depthInMetres(input);
-
+  std::optional<track::Frame> frame;
+  if (settings_.sensor == io::SensorType::Stereo) {
+    frame = buildStereoFrame(input, result.timing);
+  } else {
+    const cv::Mat gray = toGray(input.image, result.timing);
+    const cv::Mat depth_m = depthInMetres(input);
+    const auto stage = Clock::now();
+    frame = frame_builder_->build(input.index, input.timestamp, gray, depth_m, input.dynamic_mask);
+    result.timing.features = msSince(stage);
+  }
   auto stage = Clock::now();
-  auto frame =
-      frame_builder_->build(input.index, input.timestamp, gray, depth_m, input.dynamic_mask);
-  result.timing.features = msSince(stage);
-  stage = Clock::now();
-  result.outcome = tracker_->track(std::move(frame));
+  result.outcome = tracker_->track(std::move(*frame));
   result.timing.tracking = msSince(stage);
+  if (rectifier_ && result.outcome.T_w_c) {
+    result.outcome.T_w_c = toCalibratedCamera(*result.outcome.T_w_c);
+  }
   if (sequential_) {
     stage = Clock::now();
     mapper_->processPending();
@@ -141,12 +242,31 @@ FrameResult System::track(const SensorFrame& input) {
   return result;
 }
 
+// Tracking runs in the rectified left camera, p_rect = R_rect_c1 * p_c1 (same centre): the
+// calibrated camera's pose is T_c1_rect * T_w_rect * T_rect_c1, its world being the calibrated
+// camera at the first keyframe instead of the rectified one.
+SE3 System::toCalibratedCamera(const SE3& T_w_c) const {
+  if (!rectifier_) return T_w_c;
+  SE3 T_rect_c1 = SE3::Identity();
+  T_rect_c1.linear() = rectifier_->R_rect_c1();
+  return T_rect_c1.inverse() * T_w_c * T_rect_c1;
+}
+
+Trajectory System::toCalibratedCamera(Trajectory trajectory) const {
+  for (auto& pose : trajectory) pose.T_w_c = toCalibratedCamera(pose.T_w_c);
+  return trajectory;
+}
+
 Trajectory System::frameTrajectory() const {
-  return tracker_->trajectory().frames();
+  return toCalibratedCamera(tracker_->trajectory().frames());
 }
 
 Trajectory System::keyFrameTrajectory() const {
-  return track::keyFrameTrajectory(map_->keyFrames());
+  return toCalibratedCamera(track::keyFrameTrajectory(map_->keyFrames()));
+}
+
+const track::FrameCamera& System::frameCamera() const {
+  return frame_builder_->camera();
 }
 
 std::size_t System::keyFrameCount() const {

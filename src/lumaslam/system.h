@@ -13,8 +13,14 @@
 
 namespace lumaslam {
 
+namespace camera {
+class StereoRectifier;
+}
 namespace enhance {
 class Enhancer;
+}
+namespace io {
+struct FrameData;
 }
 namespace mapping {
 class LocalMapper;
@@ -39,8 +45,12 @@ struct SensorFrame {
   cv::Mat image;         // left / rgb / mono: 8-bit gray or BGR
   cv::Mat right;         // stereo: right image, same size and type as `image`
   cv::Mat depth;         // RGB-D: CV_16U raw (divided by DepthMapFactor) or CV_32F metres
-  cv::Mat dynamic_mask;  // optional CV_8U, nonzero where features must not be taken
+  cv::Mat dynamic_mask;  // optional CV_8U in `image`'s pixels (rectified with it), nonzero where
+                         // features must not be taken
 };
+
+// A dataset frame as the sensor input (image, right, depth; no mask).
+SensorFrame toSensorFrame(const io::FrameData& frame);
 
 struct FrameResult {
   track::TrackingOutcome outcome;
@@ -55,7 +65,8 @@ class System {
   System& operator=(const System&) = delete;
 
   // Tracks one frame of the configured sensor. Throws Error for input the sensor cannot use
-  // (missing depth / right image, wrong size or type).
+  // (missing depth / right image, wrong size or type). An unrectified stereo pair (Camera2.*)
+  // is rectified first (timed as part of `features`) and tracked in the rectified left camera.
   FrameResult track(const SensorFrame& frame);
 
   // RGB-D shorthand for track().
@@ -65,21 +76,31 @@ class System {
   // Waits for local mapping to finish and stops its thread. Idempotent; the destructor calls it.
   void shutdown();
 
-  Trajectory frameTrajectory() const;     // every tracked frame, T_w_c
+  // Poses of the left / rgb camera as calibrated (for a rectified pair, converted back from
+  // the rectified camera): T_w_c, world = that camera at the first keyframe.
+  Trajectory frameTrajectory() const;     // every tracked frame
   Trajectory keyFrameTrajectory() const;  // keyframes only
   std::size_t keyFrameCount() const;
   std::size_t mapPointCount() const;
   const track::Tracker& tracker() const { return *tracker_; }
   const io::Settings& settings() const { return settings_; }
+  // The camera tracking works in (the rectified one for an unrectified stereo pair).
+  const track::FrameCamera& frameCamera() const;
 
  private:
   cv::Mat toGray(const cv::Mat& image, FrameTiming& timing);
   cv::Mat depthInMetres(const SensorFrame& frame) const;
+  cv::Mat rightGray(const cv::Mat& image, FrameTiming& timing);  // stereo right image
+  track::Frame buildStereoFrame(const SensorFrame& frame, FrameTiming& timing);
+  SE3 toCalibratedCamera(const SE3& T_w_c) const;  // identity unless rectifying
+  Trajectory toCalibratedCamera(Trajectory trajectory) const;
 
   io::Settings settings_;
   bool sequential_ = false;
   std::shared_ptr<map::Map> map_;
   std::unique_ptr<enhance::Enhancer> enhancer_;
+  std::unique_ptr<enhance::Enhancer> right_enhancer_;   // stereo: the right image's own
+  std::unique_ptr<camera::StereoRectifier> rectifier_;  // unrectified stereo pairs only
   std::unique_ptr<track::FrameBuilder> frame_builder_;
   std::unique_ptr<mapping::LocalMapper> mapper_;
   std::unique_ptr<track::Tracker> tracker_;

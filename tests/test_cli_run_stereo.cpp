@@ -1,0 +1,62 @@
+// `lumaslam run` on stereo data: the synthetic EuRoC-format sequence `lumaslam synth` writes
+// (rectified pair), the real EuRoC V1_01 excerpt with configs/euroc_stereo.yaml (rectified by
+// the System), and stereo settings on a dataset without right images.
+#include <gtest/gtest.h>
+
+#include <fstream>
+
+#include <nlohmann/json.hpp>
+
+#include "test_cli.h"
+
+namespace {
+
+using lumaslam::test::runCli;
+using lumaslam::test::TempDir;
+
+nlohmann::json readSummary(const std::filesystem::path& out) {
+  std::ifstream file(out / "summary.json");
+  return nlohmann::json::parse(file);
+}
+
+TEST(CliRunStereo, TracksASyntheticEurocDataset) {
+  TempDir dir("cli_run_stereo");
+  const auto data = dir.path() / "data";
+  const auto out = dir.path() / "out";
+  const auto synth = runCli("synth " + data.string() + " --preset xyz-stereo --frames 40 --seed 2");
+  ASSERT_EQ(synth.exit_code, 0) << synth.output;
+  const auto run =
+      runCli("run --dataset euroc:" + data.string() + " --sequential --out " + out.string());
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  const auto summary = readSummary(out);
+  EXPECT_EQ(summary["frames"].get<int>(), 40);
+  EXPECT_EQ(summary["tracked"].get<int>(), 40);
+  ASSERT_TRUE(summary.contains("evaluation")) << run.output;
+  EXPECT_LT(summary["evaluation"]["ate"]["rmse"].get<double>(), 0.02);
+}
+
+TEST(CliRunStereo, TracksRealEurocWithItsCalibration) {
+  const auto root = lumaslam::test::dataDir() / "euroc" / "V1_01_easy_micro";
+  if (!std::filesystem::exists(root)) GTEST_SKIP() << "no " << root;
+  TempDir dir("cli_run_euroc");
+  const auto settings = lumaslam::test::sourceDir() / "configs" / "euroc_stereo.yaml";
+  const auto run = runCli("run --dataset euroc:" + root.string() + " --settings " +
+                          settings.string() + " --max-frames 30 --out " + dir.path().string());
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  const auto summary = readSummary(dir.path());
+  EXPECT_EQ(summary["frames"].get<int>(), 30);
+  EXPECT_EQ(summary["tracked"].get<int>(), 30);
+}
+
+TEST(CliRunStereo, StereoSettingsOnAMonocularDatasetIsAClearError) {
+  const auto root = lumaslam::test::dataDir() / "euroc" / "V1_01_easy_micro";
+  if (!std::filesystem::exists(root)) GTEST_SKIP() << "no " << root;
+  TempDir dir("cli_run_euroc_mono");
+  const auto settings = lumaslam::test::sourceDir() / "configs" / "euroc_stereo.yaml";
+  const auto run = runCli("run --dataset euroc-mono:" + root.string() + " --settings " +
+                          settings.string() + " --out " + dir.path().string());
+  EXPECT_NE(run.exit_code, 0);
+  EXPECT_NE(run.output.find("no right images"), std::string::npos) << run.output;
+}
+
+}  // namespace
