@@ -14,12 +14,11 @@
 #include <opencv2/imgproc.hpp>
 
 #include "command_registry.h"
+#include "image_inputs.h"
 #include "lumaslam/core/error.h"
 #include "lumaslam/core/settings_file.h"
 #include "lumaslam/enhance/enhancer.h"
 #include "lumaslam/enhance/evaluation.h"
-#include "lumaslam/io/dataset_reader.h"
-#include "lumaslam/io/image_files.h"
 
 namespace lumaslam::cli {
 namespace {
@@ -50,36 +49,6 @@ EnhancerParams loadParams(const EnhanceOptions& options) {
     params = EnhancerParams::forPreset(options.preset);
   }
   return params;
-}
-
-// Calls `visit(name, image)` for an image file, each image of a folder, or each frame of a
-// dataset spec ("euroc:PATH", "kitti-mono:PATH", ... see io/dataset_reader.h).
-template <typename Visit>
-void forEachFrame(const std::string& input, int max_frames, int stride, Visit&& visit) {
-  const fs::path path(input);
-  std::error_code ec;
-  if (fs::is_regular_file(path, ec) && io::hasImageExtension(path)) {
-    visit(path.stem().string(), io::readImageFile(path, cv::IMREAD_UNCHANGED));
-    return;
-  }
-  const bool is_folder = fs::is_directory(path, ec);
-  if (!is_folder && input.find(':') == std::string::npos) {
-    fail("{}: no such image file or folder (or give a dataset spec KIND:PATH)", input);
-  }
-  const std::string spec = is_folder ? "folder:" + input : input;
-  io::ReaderOptions reader_options;
-  if (spec.rfind("folder:", 0) == 0) reader_options.image_read_flags = cv::IMREAD_UNCHANGED;
-  auto reader = io::openDataset(spec, reader_options);
-  int index = 0;
-  int visited = 0;
-  while (auto frame = reader->next()) {
-    if (index++ % std::max(stride, 1) != 0) continue;
-    if (max_frames > 0 && visited >= max_frames) break;
-    ++visited;
-    const std::string name = frame->image_path.empty() ? std::to_string(frame->index)
-                                                       : frame->image_path.stem().string();
-    visit(name, frame->image);
-  }
 }
 
 cv::Mat toBgr(const cv::Mat& image) {
@@ -148,20 +117,20 @@ int runEnhance(const EnhanceOptions& options) {
   enhance::Enhancer enhancer(loadParams(options));
   if (!options.out.empty()) fs::create_directories(options.out);
   std::printf("# preset %s\n", enhancer.params().preset.c_str());
-  forEachFrame(options.input, options.max_frames, options.stride,
-               [&](const std::string& name, const cv::Mat& image) {
-                 enhance::EnhancedFrame frame;
-                 try {
-                   frame = enhancer.enhance(image);
-                 } catch (const Error& e) {
-                   fail("{}: {}", name, e.what());
-                 }
-                 std::printf("%s %s\n", name.c_str(), describe(frame.report).c_str());
-                 if (options.out.empty()) return;
-                 writeImage(fs::path(options.out) / (name + ".png"), frame.colour);
-                 writeImage(fs::path(options.out) / (name + "_preview.jpg"),
-                            preview(image, frame.colour));
-               });
+  forEachInputImage(options.input, options.max_frames, options.stride,
+                    [&](const std::string& name, const cv::Mat& image) {
+                      enhance::EnhancedFrame frame;
+                      try {
+                        frame = enhancer.enhance(image);
+                      } catch (const Error& e) {
+                        fail("{}: {}", name, e.what());
+                      }
+                      std::printf("%s %s\n", name.c_str(), describe(frame.report).c_str());
+                      if (options.out.empty()) return;
+                      writeImage(fs::path(options.out) / (name + ".png"), frame.colour);
+                      writeImage(fs::path(options.out) / (name + "_preview.jpg"),
+                                 preview(image, frame.colour));
+                    });
   return 0;
 }
 
@@ -169,11 +138,11 @@ int runCalibrate(const EnhanceOptions& options) {
   const enhance::Enhancer enhancer(loadParams(options));
   enhance::ContrastMaxima maxima;
   int frames = 0;
-  forEachFrame(options.calibrate, options.max_frames, options.stride,
-               [&](const std::string&, const cv::Mat& image) {
-                 for (const auto& stats : enhancer.contrastOf(image)) maxima.observe(stats);
-                 ++frames;
-               });
+  forEachInputImage(options.calibrate, options.max_frames, options.stride,
+                    [&](const std::string&, const cv::Mat& image) {
+                      for (const auto& stats : enhancer.contrastOf(image)) maxima.observe(stats);
+                      ++frames;
+                    });
   EnhancerParams calibrated = enhancer.params();
   calibrated.clahe.sigma_max = maxima.sigma_max;
   calibrated.clahe.d_max = maxima.d_max;
@@ -220,9 +189,10 @@ int runEvaluatePairs(const EnhanceOptions& options) {
 
 int runEvaluateDarkened(const EnhanceOptions& options) {
   std::vector<cv::Mat> frames;
-  forEachFrame(options.evaluate_darkened, options.max_frames > 0 ? options.max_frames : 20,
-               std::max(options.stride, 1),
-               [&](const std::string&, const cv::Mat& image) { frames.push_back(image.clone()); });
+  forEachInputImage(options.evaluate_darkened, options.max_frames > 0 ? options.max_frames : 20,
+                    std::max(options.stride, 1), [&](const std::string&, const cv::Mat& image) {
+                      frames.push_back(image.clone());
+                    });
   const auto list = candidates(options);
   std::printf(
       "| level (A, gamma, noise) | candidate | keypoints | coverage 8x8 | "

@@ -1,0 +1,137 @@
+// `lumaslam vocab`: train a place-recognition vocabulary from images, convert ORB-SLAM's
+// DBoW2 text vocabulary (ORBvoc.txt) to our binary format, and describe a vocabulary file.
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <spdlog/spdlog.h>
+#include <opencv2/imgproc.hpp>
+
+#include "command_registry.h"
+#include "image_inputs.h"
+#include "lumaslam/core/error.h"
+#include "lumaslam/feature/orb_extractor.h"
+#include "lumaslam/loop/vocabulary_io.h"
+#include "lumaslam/loop/vocabulary_training.h"
+
+namespace lumaslam::cli {
+namespace {
+
+struct VocabOptions {
+  std::vector<std::string> inputs;
+  std::string out;
+  std::string file;  // convert / info input
+  loop::TrainingParams training;
+  int features = 1000;
+  int max_images = 0;
+  int stride = 1;
+};
+
+double secondsSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+cv::Mat toGray(const cv::Mat& image, const std::string& name) {
+  cv::Mat gray;
+  if (image.depth() != CV_8U) fail("{}: expected an 8-bit image for ORB", name);
+  if (image.channels() == 1) return image;
+  cv::cvtColor(image, gray, image.channels() == 4 ? cv::COLOR_BGRA2GRAY : cv::COLOR_BGR2GRAY);
+  return gray;
+}
+
+void printSummary(const loop::Vocabulary& vocabulary) {
+  std::size_t weighted = 0;
+  for (loop::WordId w = 0; w < vocabulary.wordCount(); ++w) weighted += vocabulary.weight(w) > 0;
+  std::printf("k %d\nL %d\nnodes %zu\nwords %zu\nwords with weight > 0 %zu\n",
+              vocabulary.branching(), vocabulary.depth(), vocabulary.nodeCount(),
+              vocabulary.wordCount(), weighted);
+}
+
+int runTrain(const VocabOptions& options) {
+  if (options.features < 1) fail("--features must be >= 1 (got {})", options.features);
+  feature::OrbSettings settings;
+  settings.nFeatures = options.features;
+  const feature::OrbExtractor extractor(settings);
+  std::vector<cv::Mat> descriptors;
+  std::size_t count = 0;
+  const auto start = std::chrono::steady_clock::now();
+  for (const auto& input : options.inputs) {
+    const int remaining =
+        options.max_images > 0 ? options.max_images - static_cast<int>(descriptors.size()) : 0;
+    if (options.max_images > 0 && remaining <= 0) break;
+    forEachInputImage(input, remaining, options.stride,
+                      [&](const std::string& name, const cv::Mat& image) {
+                        descriptors.push_back(extractor.extract(toGray(image, name)).descriptors);
+                        count += static_cast<std::size_t>(descriptors.back().rows);
+                      });
+  }
+  if (descriptors.empty()) fail("no images found in the inputs");
+  spdlog::info("{} images, {} ORB descriptors in {:.1f} s", descriptors.size(), count,
+               secondsSince(start));
+  const auto train_start = std::chrono::steady_clock::now();
+  const loop::Vocabulary vocabulary = loop::trainVocabulary(descriptors, options.training);
+  const double train_seconds = secondsSince(train_start);
+  loop::saveVocabulary(vocabulary, options.out);
+  std::printf("images %zu\ndescriptors %zu\ntraining seconds %.2f\n", descriptors.size(), count,
+              train_seconds);
+  printSummary(vocabulary);
+  std::printf("wrote %s\n", options.out.c_str());
+  return 0;
+}
+
+int runConvert(const VocabOptions& options) {
+  const auto start = std::chrono::steady_clock::now();
+  const loop::Vocabulary vocabulary = loop::loadDbow2Text(options.file);
+  const double read_seconds = secondsSince(start);
+  loop::saveVocabulary(vocabulary, options.out);
+  std::printf("text load seconds %.2f\n", read_seconds);
+  printSummary(vocabulary);
+  std::printf("wrote %s\n", options.out.c_str());
+  return 0;
+}
+
+int runInfo(const VocabOptions& options) {
+  const auto start = std::chrono::steady_clock::now();
+  const bool binary = loop::isBinaryVocabulary(options.file);
+  const loop::Vocabulary vocabulary = loop::loadAnyVocabulary(options.file);
+  std::printf("format %s\nload seconds %.3f\n", binary ? "lumaslam-binary" : "dbow2-text",
+              secondsSince(start));
+  printSummary(vocabulary);
+  return 0;
+}
+
+const bool registered = registerCommand(
+    "vocab", "Place-recognition vocabulary: train, convert ORBvoc.txt, info",
+    [](CLI::App& cmd) -> Runner {
+      auto options = std::make_shared<VocabOptions>();
+      cmd.require_subcommand(1);
+      CLI::App* train = cmd.add_subcommand("train", "Train a vocabulary tree from images");
+      train->add_option("INPUT", options->inputs, "Image folders or dataset specs (tum:PATH, ...)")
+          ->required();
+      train->add_option("--out", options->out, "Binary vocabulary file to write")->required();
+      train->add_option("--k", options->training.branching, "Branching factor (default 10)");
+      train->add_option("--levels", options->training.depth, "Depth L (default 6)");
+      train->add_option("--iterations", options->training.max_iterations,
+                        "k-majority iterations per split (default 10)");
+      train->add_option("--seed", options->training.seed, "Seed of the k-means++ seeding");
+      train->add_option("--features", options->features, "ORB features per image (default 1000)");
+      train->add_option("--max-images", options->max_images, "Use at most this many images");
+      train->add_option("--stride", options->stride, "Use every Nth frame of each input");
+      CLI::App* convert =
+          cmd.add_subcommand("convert", "Convert a DBoW2 text vocabulary (ORBvoc.txt) to binary");
+      convert->add_option("TEXT", options->file, "DBoW2 text vocabulary")->required();
+      convert->add_option("--out", options->out, "Binary vocabulary file to write")->required();
+      CLI::App* info = cmd.add_subcommand("info", "Describe a vocabulary file (binary or text)");
+      info->add_option("FILE", options->file, "Vocabulary file")->required();
+      return [options, train, convert] {
+        if (train->parsed()) return runTrain(*options);
+        if (convert->parsed()) return runConvert(*options);
+        return runInfo(*options);
+      };
+    });
+
+}  // namespace
+}  // namespace lumaslam::cli

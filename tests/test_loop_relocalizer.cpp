@@ -1,0 +1,141 @@
+// Relocalization against a map built from ground truth on one synthetic lap of a room: every
+// other frame is a keyframe whose depth-measured features are map points; the frames in
+// between are relocalized with no pose prior at all.
+#include <cmath>
+#include <cstdio>
+
+#include <gtest/gtest.h>
+#include <opencv2/imgproc.hpp>
+
+#include "lumaslam/core/error.h"
+#include "lumaslam/loop/relocalizer.h"
+#include "lumaslam/loop/vocabulary_training.h"
+#include "lumaslam/map/keyframe.h"
+#include "lumaslam/map/map_point.h"
+#include "lumaslam/synth/preset.h"
+#include "lumaslam/synth/sequence.h"
+#include "lumaslam/track/frame_builder.h"
+
+namespace {
+
+using namespace lumaslam;
+
+constexpr int kFrames = 24;  // 15 degrees apart
+
+track::FrameCamera cameraOf(const synth::Rig& rig) {
+  track::FrameCamera camera;
+  camera.fx = rig.camera.fx;
+  camera.fy = rig.camera.fy;
+  camera.cx = rig.camera.cx;
+  camera.cy = rig.camera.cy;
+  camera.size = {rig.camera.width, rig.camera.height};
+  camera.bf = 0.08 * rig.camera.fx;  // TUM's virtual 8 cm baseline
+  camera.close_depth = 40 * 0.08;
+  return camera;
+}
+
+struct LapMap {
+  synth::SequenceRenderer sequence{synth::findPreset("loop-rgbd"), kFrames, 1};
+  track::FrameBuilder builder{cameraOf(sequence.rig()), feature::OrbSettings{}};
+  map::Map map;
+  loop::Vocabulary vocabulary;
+  loop::KeyFrameDatabase database;
+
+  track::Frame buildFrame(const synth::SequenceRenderer& from, int index) const {
+    const synth::Frame frame = from.render(index);
+    cv::Mat gray;
+    cv::cvtColor(frame.cam0.image, gray, cv::COLOR_BGR2GRAY);
+    return builder.build(static_cast<std::size_t>(index), frame.timestamp(), gray,
+                         frame.cam0.depth);
+  }
+
+  loop::RelocalizationFrame relocalizationFrame(const track::Frame& frame) const {
+    return {frame.features.get(), builder.camera().intrinsics(), builder.pyramid().get(),
+            builder.camera().undistortedBounds()};
+  }
+
+  LapMap() {
+    std::vector<track::Frame> keyframes;
+    for (int i = 0; i < kFrames; i += 2) keyframes.push_back(buildFrame(sequence, i));
+    std::vector<cv::Mat> descriptors;
+    for (const auto& f : keyframes) descriptors.push_back(f.features->descriptors);
+    loop::TrainingParams params;
+    params.depth = 4;
+    vocabulary = loop::trainVocabulary(descriptors, params);
+
+    for (const auto& frame : keyframes) {
+      const SE3 T_w_c = sequence.render(static_cast<int>(frame.index)).cam0.T_w_c;
+      auto keyframe = std::make_shared<map::KeyFrame>(
+          map.nextKeyFrameId(), frame.index, frame.timestamp, T_w_c.inverse(), frame.features,
+          builder.pyramid(), builder.camera().intrinsics());
+      map.addKeyFrame(keyframe);
+      for (std::size_t i = 0; i < frame.size(); ++i) {
+        const float z = frame.features->depth[i];
+        if (!(z > 0.1F && z < 8.0F)) continue;
+        const Eigen::Vector3d X_w = T_w_c * frame.unprojectCamera(i, builder.camera().intrinsics());
+        auto point = std::make_shared<map::MapPoint>(map.nextMapPointId(), X_w, keyframe);
+        keyframe->setMapPoint(i, point);
+        point->addObservation(keyframe, static_cast<int>(i));
+        point->updateNormalAndDepth();
+        point->computeDistinctiveDescriptor();
+        map.addMapPoint(point);
+      }
+      loop::KeyFrameBow entry;
+      vocabulary.transform(frame.features->descriptors, 4, entry.bow, entry.features);
+      database.add(keyframe->id(), std::move(entry));
+    }
+  }
+};
+
+const LapMap& lapMap() {
+  static const LapMap instance;
+  return instance;
+}
+
+TEST(LoopRelocalizer, RelocalizesFramesBetweenKeyframesWithoutAPosePrior) {
+  const LapMap& lap = lapMap();
+  const loop::Relocalizer relocalizer(lap.vocabulary, lap.database, lap.map);
+  for (int index = 1; index < kFrames; index += 4) {
+    const track::Frame frame = lap.buildFrame(lap.sequence, index);
+    const auto result = relocalizer.relocalize(lap.relocalizationFrame(frame));
+    ASSERT_TRUE(result.success) << "frame " << index << ": " << result.candidates << " candidates, "
+                                << result.tried << " tried";
+    EXPECT_GE(result.inliers, 50);
+    int matched = 0;
+    for (const auto& p : result.points) matched += p != nullptr;
+    EXPECT_EQ(matched, result.inliers);
+    // The keyframe used is one of the two neighbours on the lap (frames index -+ 1).
+    const auto keyframe = lap.map.keyFrame(result.keyframe);
+    ASSERT_TRUE(keyframe);
+    const int gap = std::abs(static_cast<int>(keyframe->frameIndex()) - index);
+    EXPECT_TRUE(gap == 1 || gap == kFrames - 1)
+        << "frame " << index << " used keyframe of frame " << keyframe->frameIndex();
+    const SE3 truth = lap.sequence.render(index).cam0.T_w_c.inverse();
+    const SE3 error = result.T_c_w * truth.inverse();
+    // Good enough for tracking to take over (it refines against the local map next).
+    const double angle_deg = Eigen::AngleAxisd(error.linear()).angle() * 180.0 / M_PI;
+    EXPECT_LT(error.translation().norm(), 0.03) << "frame " << index;
+    EXPECT_LT(angle_deg, 1.0) << "frame " << index;
+    std::printf("frame %d: %d candidates, %d tried, %d inliers, error %.1f mm %.2f deg\n", index,
+                result.candidates, result.tried, result.inliers,
+                1000.0 * error.translation().norm(), angle_deg);
+  }
+}
+
+TEST(LoopRelocalizer, FailsCleanlyInAnotherRoomOrInTheDark) {
+  const LapMap& lap = lapMap();
+  const loop::Relocalizer relocalizer(lap.vocabulary, lap.database, lap.map);
+  const synth::SequenceRenderer other_room(synth::findPreset("loop-rgbd"), kFrames, 9);
+  const track::Frame elsewhere = lap.buildFrame(other_room, 5);
+  const auto result = relocalizer.relocalize(lap.relocalizationFrame(elsewhere));
+  EXPECT_FALSE(result.success) << result.inliers << " inliers";
+  EXPECT_EQ(result.points.size(), elsewhere.size());
+
+  const cv::Mat black(lap.builder.camera().size, CV_8UC1, cv::Scalar(0));
+  const track::Frame dark = lap.builder.build(0, 0.0, black, cv::Mat());
+  EXPECT_FALSE(relocalizer.relocalize(lap.relocalizationFrame(dark)).success);
+
+  EXPECT_THROW(relocalizer.relocalize(loop::RelocalizationFrame{}), Error);
+}
+
+}  // namespace
