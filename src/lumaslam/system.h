@@ -66,7 +66,9 @@ class System {
 
   // Tracks one frame of the configured sensor. Throws Error for input the sensor cannot use
   // (missing depth / right image, wrong size or type). An unrectified stereo pair (Camera2.*)
-  // is rectified first (timed as part of `features`) and tracked in the rectified left camera.
+  // is rectified first and tracked in the rectified left camera. Stereo timing: `enhance` is
+  // the work of both images (the right one runs beside the left), `features` the rest of the
+  // front end (rectification, both extractions, stereo matching) in wall time.
   FrameResult track(const SensorFrame& frame);
 
   // RGB-D shorthand for track().
