@@ -174,4 +174,47 @@ void BM_DatabaseQueryKitti160(benchmark::State& state) {
 }
 BENCHMARK(BM_DatabaseQueryKitti160)->Unit(benchmark::kMicrosecond)->Iterations(160);
 
+// Place recognition across data sets: vocabulary trained on the EuRoC excerpt (indoor, 95
+// frames), database = every 10th KITTI frame (outdoor), queries = frames 3 after each of
+// them. Counters: fraction whose nearest keyframe (3 frames back) ranks first, and of
+// inserted frames that find themselves first.
+void BM_PlaceRecognitionEurocVocabKitti(benchmark::State& state) {
+  const feature::OrbExtractor extractor{feature::OrbSettings{}};
+  std::vector<cv::Mat> training;
+  const fs::path euroc =
+      fs::path(LUMASLAM_SHARED_DIR) / "data/euroc/V1_01_easy_micro/mav0/cam0/data";
+  for (const auto& entry : fs::directory_iterator(euroc)) {
+    training.push_back(
+        extractor.extract(cv::imread(entry.path().string(), cv::IMREAD_GRAYSCALE)).descriptors);
+  }
+  loop::TrainingParams params;
+  params.depth = 5;
+  const auto vocabulary = loop::trainVocabulary(training, params);
+  const auto kitti = kittiDescriptors(1);
+  loop::KeyFrameDatabase db;
+  for (std::size_t i = 0; i < kitti.size(); i += 10) {
+    loop::KeyFrameBow entry;
+    vocabulary.transform(kitti[i], 4, entry.bow, entry.features);
+    db.add(i, std::move(entry));
+  }
+  std::size_t nearest_first = 0;
+  std::size_t self_first = 0;
+  std::size_t queries = 0;
+  for (auto _ : state) {
+    nearest_first = self_first = queries = 0;
+    for (std::size_t i = 0; i + 3 < kitti.size(); i += 10) {
+      const auto near = db.query(vocabulary.transform(kitti[i + 3]));
+      nearest_first += !near.empty() && near[0].id == i;
+      const auto self = db.query(vocabulary.transform(kitti[i]));
+      self_first += !self.empty() && self[0].id == i;
+      ++queries;
+    }
+  }
+  state.counters["words"] = static_cast<double>(vocabulary.wordCount());
+  state.counters["nearest_first"] =
+      static_cast<double>(nearest_first) / static_cast<double>(queries);
+  state.counters["self_first"] = static_cast<double>(self_first) / static_cast<double>(queries);
+}
+BENCHMARK(BM_PlaceRecognitionEurocVocabKitti)->Unit(benchmark::kMillisecond)->Iterations(1);
+
 }  // namespace

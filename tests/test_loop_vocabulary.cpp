@@ -234,6 +234,22 @@ TEST(LoopVocabulary, ReadsHandWrittenDbow2TextInAnyParentFirstOrder) {
   EXPECT_FLOAT_EQ(weightOf(0), 1.5F);
   EXPECT_FLOAT_EQ(weightOf(255), 2.5F);
   EXPECT_FLOAT_EQ(weightOf(127), 3.5F);
+
+  // The same file edited on Windows (CRLF) with doubled spaces reads the same.
+  std::ifstream in(file, std::ios::binary);
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  std::string crlf;
+  for (const char c : text) {
+    if (c == '\n')
+      crlf.append("\r\n");
+    else if (c == ' ')
+      crlf.append("  ");
+    else
+      crlf.push_back(c);
+  }
+  const auto windows = dir.path() / "windows.txt";
+  writeText(windows, crlf);
+  EXPECT_EQ(loop::loadDbow2Text(windows), vocabulary);
 }
 
 TEST(LoopVocabulary, MalformedDbow2TextGivesErrorsNamingFileAndLine) {

@@ -2,9 +2,12 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
 #include <cstring>
 #include <random>
+
+#include <opencv2/core/utility.hpp>
 
 #include "lumaslam/core/error.h"
 #include "lumaslam/feature/hamming.h"
@@ -53,6 +56,21 @@ Descriptor majority(const std::uint8_t* all, const std::vector<std::uint32_t>& m
     if (2 * counts[i] > n) centre[i / 8] |= static_cast<std::uint8_t>(1 << (i % 8));
   }
   return centre;
+}
+
+// Calls body(begin, end) over [0, n): split across threads when n is large (the top levels
+// of the tree see every descriptor), inline otherwise. Each index's result must not depend
+// on the others, so the outcome is the same for any thread count.
+template <typename Body>
+void forRanges(std::size_t n, Body&& body) {
+  constexpr std::size_t kParallelMin = 20000;
+  if (n < kParallelMin) {
+    body(std::size_t{0}, n);
+    return;
+  }
+  cv::parallel_for_(cv::Range(0, static_cast<int>(n)), [&](const cv::Range& range) {
+    body(static_cast<std::size_t>(range.start), static_cast<std::size_t>(range.end));
+  });
 }
 
 struct Clusters {
@@ -136,12 +154,39 @@ class TreeBuilder {
       }
       if (nearest[chosen] <= 0.0) break;
       add(members[chosen]);
-      for (std::size_t i = 0; i < members.size(); ++i) {
-        nearest[i] = std::min<double>(
-            nearest[i], feature::hammingDistance(at(members[i]), centres.back().data()));
-      }
+      forRanges(members.size(), [&](std::size_t begin, std::size_t end) {
+        for (std::size_t i = begin; i < end; ++i) {
+          nearest[i] = std::min<double>(
+              nearest[i], feature::hammingDistance(at(members[i]), centres.back().data()));
+        }
+      });
     }
     return centres;
+  }
+
+  // Nearest centre of every member; true if any assignment changed.
+  bool assign(const std::vector<std::uint32_t>& members, const std::vector<Descriptor>& centres,
+              std::vector<std::uint32_t>& assignment) const {
+    std::atomic<bool> changed{false};
+    forRanges(members.size(), [&](std::size_t begin, std::size_t end) {
+      bool range_changed = false;
+      for (std::size_t i = begin; i < end; ++i) {
+        const std::uint8_t* d = at(members[i]);
+        std::uint32_t best = 0;
+        int best_distance = feature::hammingDistance(d, centres[0].data());
+        for (std::uint32_t c = 1; c < centres.size(); ++c) {
+          const int distance = feature::hammingDistance(d, centres[c].data());
+          if (distance < best_distance) {
+            best_distance = distance;
+            best = c;
+          }
+        }
+        range_changed |= assignment[i] != best;
+        assignment[i] = best;
+      }
+      if (range_changed) changed = true;
+    });
+    return changed;
   }
 
   Clusters kMajority(const std::vector<std::uint32_t>& members) {
@@ -150,20 +195,7 @@ class TreeBuilder {
     const std::size_t k = result.centres.size();
     std::vector<std::uint32_t> assignment(members.size(), k);  // k = unassigned
     for (int iteration = 0; iteration < params_.max_iterations; ++iteration) {
-      bool changed = false;
-      for (std::size_t i = 0; i < members.size(); ++i) {
-        std::uint32_t best = 0;
-        int best_distance = feature::hammingDistance(at(members[i]), result.centres[0].data());
-        for (std::uint32_t c = 1; c < k; ++c) {
-          const int distance = feature::hammingDistance(at(members[i]), result.centres[c].data());
-          if (distance < best_distance) {
-            best_distance = distance;
-            best = c;
-          }
-        }
-        changed |= assignment[i] != best;
-        assignment[i] = best;
-      }
+      const bool changed = assign(members, result.centres, assignment);
       result.members.assign(k, {});
       for (std::size_t i = 0; i < members.size(); ++i) {
         result.members[assignment[i]].push_back(members[i]);
@@ -229,8 +261,14 @@ Vocabulary trainVocabulary(const std::vector<cv::Mat>& images, const TrainingPar
   // IDF (DBoW2 TF_IDF): log(N / n_i), n_i = training images in which word i occurs.
   std::vector<std::uint32_t> last_image(data.wordCount(), UINT32_MAX);
   std::vector<std::uint32_t> image_count(data.wordCount(), 0);
+  std::vector<WordId> word_of(image_of.size());
+  forRanges(image_of.size(), [&](std::size_t begin, std::size_t end) {
+    for (std::size_t m = begin; m < end; ++m) {
+      word_of[m] = unweighted.wordOf(all.data() + m * kDescriptorBytes);
+    }
+  });
   for (std::size_t m = 0; m < image_of.size(); ++m) {
-    const WordId word = unweighted.wordOf(all.data() + m * kDescriptorBytes);
+    const WordId word = word_of[m];
     if (last_image[word] != image_of[m]) {
       last_image[word] = image_of[m];
       ++image_count[word];
