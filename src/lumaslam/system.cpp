@@ -47,8 +47,8 @@ System::System(const io::Settings& settings, const SystemOptions& options)
     : settings_(settings),
       sequential_(options.sequential.value_or(settings.system.sequential)),
       map_(std::make_shared<map::Map>()) {
-  if (settings_.sensor != io::SensorType::Rgbd) {
-    fail("{}: sensor '{}' is not supported yet (RGB-D is; stereo and monocular are in progress)",
+  if (settings_.sensor == io::SensorType::Stereo) {
+    fail("{}: sensor '{}' is not supported yet (RGB-D and monocular are; stereo is in progress)",
          settings_.path.string(), io::toString(settings_.sensor));
   }
   auto enhancer_params = settings_.file ? enhance::EnhancerParams::fromSettings(*settings_.file)
@@ -64,6 +64,7 @@ System::System(const io::Settings& settings, const SystemOptions& options)
   frame_builder_ = std::make_unique<track::FrameBuilder>(camera, orbSettingsFrom(settings_));
   mapping::LocalMapperParams mapper_params;
   mapper_params.threaded = !sequential_;
+  if (settings_.sensor == io::SensorType::Monocular) mapper_params.triangulation_neighbours = 20;
   mapper_ = std::make_unique<mapping::LocalMapper>(map_, camera, frame_builder_->pyramid(),
                                                    mapper_params);
   track::TrackerParams tracker_params;
@@ -123,7 +124,8 @@ FrameResult System::track(const SensorFrame& input) {
   const auto start = Clock::now();
   FrameResult result;
   const cv::Mat gray = toGray(input.image, result.timing);
-  const cv::Mat depth_m = depthInMetres(input);
+  const cv::Mat depth_m =
+      settings_.sensor == io::SensorType::Rgbd ? depthInMetres(input) : cv::Mat();
 
   auto stage = Clock::now();
   auto frame =

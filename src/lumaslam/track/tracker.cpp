@@ -121,6 +121,7 @@ std::shared_ptr<map::MapPoint> Tracker::newPointFromDepth(
 }
 
 bool Tracker::initialize() {
+  if (camera_.bf <= 0.0) return initializeMonocular();
   const auto& depth = current_.features->depth;
   const auto with_depth = std::count_if(depth.begin(), depth.end(), [](float z) { return z > 0; });
   if (with_depth < params_.min_initial_features) {
@@ -453,7 +454,7 @@ bool Tracker::needNewKeyFrame() const {
     }
   }
   const bool need_close = tracked_close < 100 && untracked_close > 70;
-  const double ratio = keyframes < 2 ? 0.4 : 0.75;
+  const double ratio = keyframes < 2 ? 0.4 : (camera_.bf > 0.0 ? 0.75 : 0.9);
   const std::size_t since = current_.index - last_keyframe_frame_;
   const bool c1a = since >= static_cast<std::size_t>(params_.max_frames_between_keyframes);
   const bool c1b =
