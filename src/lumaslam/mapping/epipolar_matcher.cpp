@@ -54,7 +54,7 @@ std::vector<std::pair<std::size_t, std::size_t>> matchForTriangulation(const map
         second = d;
       }
     }
-    if (best_j < 0 || best > 0.6 * second) continue;
+    if (best_j < 0 || best > 0.8 * second) continue;
     const auto j = static_cast<std::size_t>(best_j);
     if (best < best_for2[j]) {
       best_for2[j] = best;

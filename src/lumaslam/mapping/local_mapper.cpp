@@ -111,7 +111,11 @@ void LocalMapper::run() {
 void LocalMapper::process(const std::shared_ptr<map::KeyFrame>& keyframe) {
   attachObservations(keyframe);
   cullRecentPoints(keyframe);
+  const std::size_t points_before = map_->mapPointCount();
   triangulateNewPoints(keyframe);
+  spdlog::debug("keyframe {} (frame {}): {} points triangulated, {} in the map", keyframe->id(),
+                keyframe->frameIndex(), map_->mapPointCount() - points_before,
+                map_->mapPointCount());
   if (queuedKeyFrames() == 0) fuseWithNeighbours(keyframe);
   if (queuedKeyFrames() == 0) {
     if (params_.bundle_adjustment && map_->keyFrameCount() > 2) localBundleAdjustment(keyframe);

@@ -262,7 +262,10 @@ bool Tracker::trackWithMotionModel() {
     current_.clearMatches();
     matches = searchLastFrame(2.0F * params_.motion_search_radius);
   }
-  if (matches < 20) return false;
+  if (matches < 20) {
+    spdlog::debug("frame {}: motion model found {} matches", current_.index, matches);
+    return false;
+  }
   if (optimizeCurrentPose() == 0) return false;
   return discardOutliers() >= 10;
 }
@@ -314,7 +317,12 @@ int Tracker::searchReferencePoints(float radius) {
 bool Tracker::trackFromPose(const SE3& T_c_w_prior, float radius) {
   current_.T_c_w = T_c_w_prior;
   current_.clearMatches();
-  if (searchReferencePoints(radius) < 15) return false;
+  const int matches = searchReferencePoints(radius);
+  if (matches < 15) {
+    spdlog::debug("frame {}: {} matches with the reference keyframe's points", current_.index,
+                  matches);
+    return false;
+  }
   if (optimizeCurrentPose() == 0) return false;
   return discardOutliers() >= 10;
 }
