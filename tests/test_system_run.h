@@ -13,6 +13,7 @@
 #include "lumaslam/synth/dataset_writer.h"
 #include "lumaslam/synth/sequence.h"
 #include "lumaslam/system.h"
+#include "test_trajectory_length.h"
 
 namespace lumaslam::test_support {
 
@@ -50,10 +51,6 @@ inline SyntheticRun runSynthetic(const std::string& preset, int frames, std::uin
       frame.right = rendered.cam1->image;
     }
     const auto result = system.track(frame);
-    if (!ground_truth.empty()) {
-      run.ground_truth_length +=
-          (rendered.cam0.T_w_c.translation() - ground_truth.back().T_w_c.translation()).norm();
-    }
     ground_truth.push_back({rendered.timestamp(), rendered.cam0.T_w_c});
     if (result.outcome.state == track::TrackingState::Ok) {
       ++run.tracked;
@@ -62,6 +59,7 @@ inline SyntheticRun runSynthetic(const std::string& preset, int frames, std::uin
   }
   system.shutdown();
   run.frames = static_cast<std::size_t>(frames);
+  run.ground_truth_length = test::pathLength(ground_truth);
   run.keyframes = system.keyFrameCount();
   eval::EvaluationOptions eval_options;
   if (settings.sensor == io::SensorType::Monocular) eval_options.align = eval::AlignMode::Sim3;
