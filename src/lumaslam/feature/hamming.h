@@ -15,16 +15,22 @@ inline constexpr int kThLow = 50;    // strict: matching without a position prio
 
 namespace detail {
 
-inline int hammingPortable(const std::uint8_t* a, const std::uint8_t* b) {
+// Sum of `popcount` over the four 64-bit words of a ^ b.
+template <typename Popcount>
+inline int hammingWords(const std::uint8_t* a, const std::uint8_t* b, Popcount popcount) {
   int distance = 0;
   for (int offset = 0; offset < kDescriptorBytes; offset += 8) {
     std::uint64_t wordA;
     std::uint64_t wordB;
     std::memcpy(&wordA, a + offset, 8);
     std::memcpy(&wordB, b + offset, 8);
-    distance += std::popcount(wordA ^ wordB);
+    distance += popcount(wordA ^ wordB);
   }
   return distance;
+}
+
+inline int hammingPortable(const std::uint8_t* a, const std::uint8_t* b) {
+  return hammingWords(a, b, [](std::uint64_t word) { return std::popcount(word); });
 }
 
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(__POPCNT__)
@@ -33,15 +39,7 @@ inline int hammingPortable(const std::uint8_t* a, const std::uint8_t* b) {
 // matching). Use the instruction when the CPU has it (every x86-64 CPU since 2008).
 __attribute__((target("popcnt"))) inline int hammingPopcnt(const std::uint8_t* a,
                                                            const std::uint8_t* b) {
-  int distance = 0;
-  for (int offset = 0; offset < kDescriptorBytes; offset += 8) {
-    std::uint64_t wordA;
-    std::uint64_t wordB;
-    std::memcpy(&wordA, a + offset, 8);
-    std::memcpy(&wordB, b + offset, 8);
-    distance += __builtin_popcountll(wordA ^ wordB);
-  }
-  return distance;
+  return hammingWords(a, b, [](std::uint64_t word) { return __builtin_popcountll(word); });
 }
 
 inline const bool kCpuHasPopcnt = [] {
