@@ -175,6 +175,16 @@ TEST(TwoViewInitializer, TooFewOrInconsistentMatchesFailCleanly) {
     b[i] = {u(rng), v(rng)};
   }
   EXPECT_FALSE(initializer.reconstruct(a, b).success);
+  // Degenerate sets (all at one pixel, all on one line) fail without throwing.
+  const std::vector<cv::Point2f> same(100, cv::Point2f(100.0F, 100.0F));
+  EXPECT_FALSE(initializer.reconstruct(same, same).success);
+  std::vector<cv::Point2f> line1;
+  std::vector<cv::Point2f> line2;
+  for (int i = 0; i < 100; ++i) {
+    line1.emplace_back(static_cast<float>(5 * i), 200.0F);
+    line2.emplace_back(static_cast<float>(5 * i + 3), 210.0F);
+  }
+  EXPECT_FALSE(initializer.reconstruct(line1, line2).success);
 }
 
 TEST(TwoViewScores, ExactModelsScoreEveryMatchAsInlier) {

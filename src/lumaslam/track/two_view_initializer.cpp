@@ -268,8 +268,13 @@ TwoViewReconstruction TwoViewInitializer::reconstruct(const std::vector<cv::Poin
   auto homography = std::async(std::launch::async, [&] {
     FittedModel fitted;
     cv::Mat mask;
-    const cv::Mat H = cv::findHomography(p1, p2, cv::RANSAC, std::sqrt(kChi2TwoDof) * sigma, mask,
-                                         iterations, 0.99);
+    cv::Mat H;
+    try {
+      H = cv::findHomography(p1, p2, cv::RANSAC, std::sqrt(kChi2TwoDof) * sigma, mask, iterations,
+                             0.99);
+    } catch (const cv::Exception&) {
+      return fitted;  // degenerate input: no homography (scored 0)
+    }
     if (H.rows == 3 && H.cols == 3) {
       fitted.matrix = cv::Matx33d(H);
       fitted.score = scoreHomography(fitted.matrix, p1, p2, sigma);
@@ -280,8 +285,13 @@ TwoViewReconstruction TwoViewInitializer::reconstruct(const std::vector<cv::Poin
   // fundamental one for the same matches; F = K^-T E K^-1 is scored as ORB-SLAM scores F.
   FittedModel fundamental;
   cv::Mat mask;
-  const cv::Mat E = cv::findEssentialMat(p1, p2, cv::Mat(K_), cv::USAC_ACCURATE, 0.999,
-                                         std::sqrt(kChi2OneDof) * sigma, iterations, mask);
+  cv::Mat E;
+  try {
+    E = cv::findEssentialMat(p1, p2, cv::Mat(K_), cv::USAC_ACCURATE, 0.999,
+                             std::sqrt(kChi2OneDof) * sigma, iterations, mask);
+  } catch (const cv::Exception&) {
+    E.release();  // degenerate input: no essential matrix (scored 0)
+  }
   if (E.rows == 3 && E.cols == 3) {  // the 5-point solver may return several stacked matrices
     const cv::Matx33d K_inv = K_.inv();
     fundamental.matrix = K_inv.t() * cv::Matx33d(E) * K_inv;

@@ -1,12 +1,12 @@
 #pragma once
 // Two-view initialisation of a monocular map (ORB-SLAM's Initializer): from pixel matches
-// between a reference and a current view, fit a homography and a fundamental matrix in
-// parallel (OpenCV RANSAC), score both with ORB-SLAM's symmetric transfer scores, pick H when
-// R_H = S_H / (S_H + S_F) > 0.45, recover the relative motion from the chosen model and keep
-// the solution that triangulates the most points in front of both cameras with enough
-// parallax, then refine motion and points by a two-view bundle adjustment. Failure (too little
-// parallax, ambiguous solutions, too few matches) is normal while the camera has not moved enough;
-// it is reported, never thrown.
+// between a reference and a current view, fit a homography (OpenCV RANSAC) and, in parallel, a
+// fundamental matrix (F = K^-T E K^-1 from OpenCV's 5-point USAC essential matrix), score both with
+// ORB-SLAM's symmetric transfer scores, pick H when R_H = S_H / (S_H + S_F) > 0.45, recover the
+// relative motion from the chosen model and keep the solution that triangulates the most points in
+// front of both cameras with enough parallax, then refine motion and points by a two-view bundle
+// adjustment. Failure (too little parallax, ambiguous solutions, too few matches) is normal while
+// the camera has not moved enough; it is reported, never thrown.
 #include <optional>
 #include <string>
 #include <vector>
