@@ -16,7 +16,7 @@ TEST(SystemRgbd, TracksStaticSceneWithXyzMotion) {
 
 // Fast rotations, with local mapping in its own thread as users run it.
 TEST(SystemRgbd, TracksStaticSceneWithRpyMotionThreaded) {
-  const auto run = runOnPreset("rpy-rgbd", 600, 2, {}, /*sequential=*/false);
+  const auto run = runOnPreset("rpy-rgbd", 600, 2, {.sequential = false});
   EXPECT_EQ(run.tracked, run.frames);
   EXPECT_LT(run.report.ate.stats.rmse, 0.01);
   EXPECT_GT(run.keyframes, 5U);

@@ -1,9 +1,12 @@
 #pragma once
-// Runs the System on a synthetic preset (RGB-D or stereo, with the Settings the generator
-// writes) and evaluates the trajectory against the ground truth: shared by test_system_*.
+// Runs the System over a synthetic preset (with the Settings the generator writes, optionally
+// edited, optionally as another sensor: e.g. the rgb stream of an RGB-D preset as monocular)
+// and evaluates the trajectory against the ground truth: shared by the test_system_* tests.
 #include <functional>
+#include <optional>
 #include <string>
 
+#include <gtest/gtest.h>
 #include <spdlog/spdlog.h>
 
 #include "lumaslam/core/settings_file.h"
@@ -12,62 +15,100 @@
 #include "lumaslam/synth/dataset_writer.h"
 #include "lumaslam/synth/sequence.h"
 #include "lumaslam/system.h"
+#include "test_trajectory_length.h"
 
 namespace lumaslam::test {
 
 struct RunResult {
-  std::size_t tracked = 0;
   std::size_t frames = 0;
-  eval::EvaluationReport report;
+  std::size_t tracked = 0;
+  std::optional<std::size_t> first_tracked;  // frame index of the first tracked frame
   std::size_t keyframes = 0;
+  double ground_truth_length = 0.0;  // metres travelled by the camera over the sequence
+  eval::EvaluationReport report;
 };
 
-// The settings.yaml the generator writes for the sequence, optionally edited first.
+// Edits the settings.yaml text the generator writes before it is parsed.
 using SettingsEdit = std::function<std::string(std::string)>;
+
+struct RunConfig {
+  SettingsEdit edit;
+  std::optional<io::SensorType> sensor;  // nullopt: the preset's own sensor
+  bool sequential = true;                // false: local mapping in its own thread
+};
+
 inline io::Settings presetSettings(const synth::SequenceRenderer& sequence,
-                                   const SettingsEdit& edit = {}) {
+                                   const SettingsEdit& edit = {},
+                                   std::optional<io::SensorType> sensor = std::nullopt) {
   const std::string name = sequence.preset().name;
   std::string yaml = synth::settingsYaml(sequence);
   if (edit) yaml = edit(std::move(yaml));
   auto file = std::make_shared<const core::SettingsFile>(
       core::SettingsFile::fromString(yaml, name + ".yaml"));
-  return io::Settings::fromFile(file);
+  return io::Settings::fromFile(file, sensor);
 }
 
-// The sensor input of a rendered frame: left + right for stereo, rgb + depth for RGB-D.
-inline SensorFrame sensorFrame(const synth::Frame& frame) {
+// The sensor input of a rendered frame: the left image plus, for `sensor` (nullopt: all the
+// frame has), the right image (stereo) and the depth (RGB-D).
+inline SensorFrame sensorFrame(const synth::Frame& frame,
+                               std::optional<io::SensorType> sensor = std::nullopt) {
   SensorFrame input;
   input.index = static_cast<std::size_t>(frame.index);
   input.timestamp = frame.timestamp();
   input.image = frame.cam0.image;
-  if (frame.cam1) input.right = frame.cam1->image;
-  input.depth = frame.sensor_depth;
+  if (frame.cam1 && sensor.value_or(io::SensorType::Stereo) == io::SensorType::Stereo) {
+    input.right = frame.cam1->image;
+  }
+  if (sensor.value_or(io::SensorType::Rgbd) == io::SensorType::Rgbd) {
+    input.depth = frame.sensor_depth;
+  }
   return input;
 }
 
 inline RunResult runOnPreset(const std::string& preset, int frames, std::uint64_t seed,
-                             const SettingsEdit& edit = {}, bool sequential = true) {
+                             const RunConfig& config = {}) {
   const synth::SequenceRenderer sequence(synth::findPreset(preset), frames, seed);
+  const auto settings = presetSettings(sequence, config.edit, config.sensor);
   SystemOptions options;
   options.enhance_preset = "off";
-  options.sequential = sequential;
-  System system(presetSettings(sequence, edit), options);
+  options.sequential = config.sequential;
+  System system(settings, options);
   Trajectory ground_truth;
   RunResult run;
   for (int i = 0; i < frames; ++i) {
     const auto frame = sequence.render(i);
-    const auto result = system.track(sensorFrame(frame));
+    const auto result = system.track(sensorFrame(frame, settings.sensor));
     ground_truth.push_back({frame.timestamp(), frame.cam0.T_w_c});
-    if (result.outcome.state == track::TrackingState::Ok) ++run.tracked;
+    if (result.outcome.state == track::TrackingState::Ok) {
+      ++run.tracked;
+      if (!run.first_tracked) run.first_tracked = static_cast<std::size_t>(i);
+    }
   }
   system.shutdown();
   run.frames = static_cast<std::size_t>(frames);
+  run.ground_truth_length = pathLength(ground_truth);
   run.keyframes = system.keyFrameCount();
   eval::EvaluationOptions eval_options;
+  if (settings.sensor == io::SensorType::Monocular) eval_options.align = eval::AlignMode::Sim3;
   run.report = eval::evaluate(system.frameTrajectory(), ground_truth, eval_options);
-  spdlog::info("{}: tracked {}/{}, {} keyframes, {} points, ATE rmse {:.4f} m", preset, run.tracked,
-               frames, run.keyframes, system.mapPointCount(), run.report.ate.stats.rmse);
+  spdlog::info(
+      "{} ({}): tracked {}/{} from frame {}, {} keyframes, {} points, ATE rmse {:.4f} m "
+      "over {:.2f} m",
+      preset, io::toString(settings.sensor), run.tracked, frames,
+      run.first_tracked ? static_cast<long>(*run.first_tracked) : -1L, run.keyframes,
+      system.mapPointCount(), run.report.ate.stats.rmse, run.ground_truth_length);
   return run;
+}
+
+// Issue 7's monocular acceptance: initialised within 30 frames, >= 95% of all frames tracked
+// (those before initialisation count as lost), Sim3 ATE <= 2% of the distance travelled.
+inline void expectMonocularAcceptance(const RunResult& run) {
+  ASSERT_TRUE(run.first_tracked.has_value()) << "never initialised";
+  EXPECT_LT(*run.first_tracked, 30U);
+  EXPECT_GE(static_cast<double>(run.tracked), 0.95 * static_cast<double>(run.frames));
+  EXPECT_EQ(run.report.alignment.mode, eval::AlignMode::Sim3);
+  EXPECT_LE(run.report.ate.stats.rmse, 0.02 * run.ground_truth_length);
+  EXPECT_GT(run.keyframes, 2U);
 }
 
 }  // namespace lumaslam::test

@@ -104,7 +104,10 @@ int runPipeline(const RunOptions& options) {
   const auto ground_truth = reader->groundTruth();
   if (!ground_truth.empty() && trajectory.size() >= 3) {
     try {
-      const auto report = eval::evaluate(trajectory, ground_truth, eval::EvaluationOptions{});
+      eval::EvaluationOptions eval_options;
+      // Monocular scale is unobservable: align with a similarity (ORB-SLAM's evaluation).
+      if (settings.sensor == io::SensorType::Monocular) eval_options.align = eval::AlignMode::Sim3;
+      const auto report = eval::evaluate(trajectory, ground_truth, eval_options);
       summary["evaluation"] = eval::toJson(report);
       eval::writeEvaluationPlot(options.out / "evaluation.svg", report);
       std::printf("%s", eval::formatTable(report).c_str());

@@ -62,10 +62,6 @@ System::System(const io::Settings& settings, const SystemOptions& options)
     : settings_(settings),
       sequential_(options.sequential.value_or(settings.system.sequential)),
       map_(std::make_shared<map::Map>()) {
-  if (settings_.sensor == io::SensorType::Monocular) {
-    fail("{}: sensor '{}' is not supported yet (RGB-D and stereo are; monocular is in progress)",
-         settings_.path.string(), io::toString(settings_.sensor));
-  }
   const bool stereo = settings_.sensor == io::SensorType::Stereo;
   if (stereo && settings_.stereo && !settings_.stereo->right && settings_.camera.hasDistortion()) {
     fail(
@@ -99,6 +95,7 @@ System::System(const io::Settings& settings, const SystemOptions& options)
   frame_builder_ = std::make_unique<track::FrameBuilder>(camera, orbSettingsFrom(settings_));
   mapping::LocalMapperParams mapper_params;
   mapper_params.threaded = !sequential_;
+  if (settings_.sensor == io::SensorType::Monocular) mapper_params.triangulation_neighbours = 20;
   mapper_ = std::make_unique<mapping::LocalMapper>(map_, camera, frame_builder_->pyramid(),
                                                    mapper_params);
   track::TrackerParams tracker_params;
@@ -224,7 +221,8 @@ FrameResult System::track(const SensorFrame& input) {
     frame = buildStereoFrame(input, result.timing);
   } else {
     const cv::Mat gray = toGray(input.image, result.timing);
-    const cv::Mat depth_m = depthInMetres(input);
+    const cv::Mat depth_m =
+        settings_.sensor == io::SensorType::Rgbd ? depthInMetres(input) : cv::Mat();
     const auto stage = Clock::now();
     frame = frame_builder_->build(input.index, input.timestamp, gray, depth_m, input.dynamic_mask);
     result.timing.features = msSince(stage);

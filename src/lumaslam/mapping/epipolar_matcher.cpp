@@ -15,10 +15,6 @@ std::vector<std::pair<std::size_t, std::size_t>> matchForTriangulation(const map
   const auto& f2 = kf2.features();
   const auto points1 = kf1.mapPoints();
   const auto points2 = kf2.mapPoints();
-  std::vector<std::size_t> free2;
-  for (std::size_t j = 0; j < f2.size(); ++j) {
-    if (!points2[j]) free2.push_back(j);
-  }
   // Epipole of camera 1 in image 2: features right next to it carry no depth information.
   const Eigen::Vector3d C1_in_2 = kf2.T_c_w() * kf1.center();
   const auto& k = kf2.intrinsics();
@@ -26,35 +22,51 @@ std::vector<std::pair<std::size_t, std::size_t>> matchForTriangulation(const map
                                 k.fy * C1_in_2.y() / C1_in_2.z() + k.cy);
   const auto& pyramid = kf2.pyramid();
 
+  // Features of view 2 without a point and not next to the epipole, with their level's
+  // epipolar threshold: the cheap geometric test runs before the Hamming distance.
+  struct Candidate {
+    std::size_t index;
+    double x, y;
+    double max_line_distance2;
+  };
+  std::vector<Candidate> candidates;
+  for (std::size_t j = 0; j < f2.size(); ++j) {
+    if (points2[j]) continue;
+    const Eigen::Vector2d p2(f2.undistorted[j].x, f2.undistorted[j].y);
+    const auto octave2 = static_cast<std::size_t>(f2.keypoints[j].octave);
+    const double scale2 = pyramid.scale[octave2];
+    if (C1_in_2.z() > 0 && (p2 - epipole).squaredNorm() < 100.0 * scale2 * scale2) continue;
+    candidates.push_back({j, p2.x(), p2.y(), 3.84 * pyramid.sigma2[octave2]});
+  }
+
   std::vector<int> best_for2(f2.size(), std::numeric_limits<int>::max());
   std::vector<int> match_of2(f2.size(), -1);
   for (std::size_t i = 0; i < f1.size(); ++i) {
     if (points1[i]) continue;
     const std::uint8_t* d1 = f1.descriptors.ptr<std::uint8_t>(static_cast<int>(i));
-    const Eigen::Vector2d p1(f1.undistorted[i].x, f1.undistorted[i].y);
+    const Eigen::Vector3d line =
+        F21 * Eigen::Vector3d(f1.undistorted[i].x, f1.undistorted[i].y, 1.0);
+    const double line_norm2 = line.x() * line.x() + line.y() * line.y();
+    if (line_norm2 <= 0) continue;
     int best = feature::kThLow + 1;
     int second = std::numeric_limits<int>::max();
     int best_j = -1;
-    for (const std::size_t j : free2) {
-      const int d =
-          feature::hammingDistance(d1, f2.descriptors.ptr<std::uint8_t>(static_cast<int>(j)));
+    for (const auto& candidate : candidates) {
+      // Squared distance to the epipolar line (epipolarDistance2) without the division.
+      const double num = line.x() * candidate.x + line.y() * candidate.y + line.z();
+      if (num * num >= candidate.max_line_distance2 * line_norm2) continue;
+      const int d = feature::hammingDistance(
+          d1, f2.descriptors.ptr<std::uint8_t>(static_cast<int>(candidate.index)));
       if (d > feature::kThLow || d >= second) continue;
-      const Eigen::Vector2d p2(f2.undistorted[j].x, f2.undistorted[j].y);
-      const int octave2 = f2.keypoints[j].octave;
-      const double scale2 = pyramid.scale[static_cast<std::size_t>(octave2)];
-      if (C1_in_2.z() > 0 && (p2 - epipole).squaredNorm() < 100.0 * scale2 * scale2) continue;
-      if (epipolarDistance2(F21, p1, p2) >=
-          3.84 * pyramid.sigma2[static_cast<std::size_t>(octave2)])
-        continue;
       if (d < best) {
         second = best;
         best = d;
-        best_j = static_cast<int>(j);
+        best_j = static_cast<int>(candidate.index);
       } else {
         second = d;
       }
     }
-    if (best_j < 0 || best > 0.6 * second) continue;
+    if (best_j < 0 || best > 0.8 * second) continue;
     const auto j = static_cast<std::size_t>(best_j);
     if (best < best_for2[j]) {
       best_for2[j] = best;

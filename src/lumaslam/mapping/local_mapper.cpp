@@ -12,6 +12,22 @@
 #include "lumaslam/optimize/local_ba.h"
 
 namespace lumaslam::mapping {
+namespace {
+
+// Median depth of a keyframe's map points in its camera (ORB-SLAM's ComputeSceneMedianDepth).
+double medianSceneDepth(const map::KeyFrame& keyframe) {
+  const SE3 T_c_w = keyframe.T_c_w();
+  std::vector<double> depths;
+  for (const auto& point : keyframe.mapPoints()) {
+    if (point && !point->isBad()) depths.push_back((T_c_w * point->position()).z());
+  }
+  if (depths.empty()) return 0.0;
+  std::nth_element(depths.begin(), depths.begin() + static_cast<long>(depths.size() / 2),
+                   depths.end());
+  return depths[depths.size() / 2];
+}
+
+}  // namespace
 
 LocalMapper::LocalMapper(std::shared_ptr<map::Map> map, const track::FrameCamera& camera,
                          std::shared_ptr<const map::ScalePyramid> pyramid,
@@ -95,7 +111,11 @@ void LocalMapper::run() {
 void LocalMapper::process(const std::shared_ptr<map::KeyFrame>& keyframe) {
   attachObservations(keyframe);
   cullRecentPoints(keyframe);
+  const std::size_t points_before = map_->mapPointCount();
   triangulateNewPoints(keyframe);
+  spdlog::debug("keyframe {} (frame {}): {} points triangulated, {} in the map", keyframe->id(),
+                keyframe->frameIndex(), map_->mapPointCount() - points_before,
+                map_->mapPointCount());
   if (queuedKeyFrames() == 0) fuseWithNeighbours(keyframe);
   if (queuedKeyFrames() == 0) {
     if (params_.bundle_adjustment && map_->keyFrameCount() > 2) localBundleAdjustment(keyframe);
@@ -155,6 +175,8 @@ void LocalMapper::triangulateNewPoints(const std::shared_ptr<map::KeyFrame>& key
     const SE3 T_c2_w = neighbour->T_c_w();
     const Eigen::Vector3d C2 = neighbour->center();
     if ((C2 - C1).norm() < std::max(baseline, 1e-3)) continue;
+    // Monocular: a baseline below 1% of the scene depth triangulates nothing useful.
+    if (baseline == 0.0 && (C2 - C1).norm() < 0.01 * medianSceneDepth(*neighbour)) continue;
     const auto& f2 = neighbour->features();
     const Eigen::Matrix3d F21 = fundamental21(T_c1_w, T_c2_w, k);
     const auto pairs = matchForTriangulation(*keyframe, *neighbour, F21);

@@ -121,6 +121,7 @@ std::shared_ptr<map::MapPoint> Tracker::newPointFromDepth(
 }
 
 bool Tracker::initialize() {
+  if (camera_.bf <= 0.0) return initializeMonocular();
   const auto& depth = current_.features->depth;
   const auto with_depth = std::count_if(depth.begin(), depth.end(), [](float z) { return z > 0; });
   if (with_depth < params_.min_initial_features) {
@@ -261,7 +262,10 @@ bool Tracker::trackWithMotionModel() {
     current_.clearMatches();
     matches = searchLastFrame(2.0F * params_.motion_search_radius);
   }
-  if (matches < 20) return false;
+  if (matches < 20) {
+    spdlog::debug("frame {}: motion model found {} matches", current_.index, matches);
+    return false;
+  }
   if (optimizeCurrentPose() == 0) return false;
   return discardOutliers() >= 10;
 }
@@ -313,7 +317,12 @@ int Tracker::searchReferencePoints(float radius) {
 bool Tracker::trackFromPose(const SE3& T_c_w_prior, float radius) {
   current_.T_c_w = T_c_w_prior;
   current_.clearMatches();
-  if (searchReferencePoints(radius) < 15) return false;
+  const int matches = searchReferencePoints(radius);
+  if (matches < 15) {
+    spdlog::debug("frame {}: {} matches with the reference keyframe's points", current_.index,
+                  matches);
+    return false;
+  }
   if (optimizeCurrentPose() == 0) return false;
   return discardOutliers() >= 10;
 }
@@ -453,7 +462,7 @@ bool Tracker::needNewKeyFrame() const {
     }
   }
   const bool need_close = tracked_close < 100 && untracked_close > 70;
-  const double ratio = keyframes < 2 ? 0.4 : 0.75;
+  const double ratio = keyframes < 2 ? 0.4 : (camera_.bf > 0.0 ? 0.75 : 0.9);
   const std::size_t since = current_.index - last_keyframe_frame_;
   const bool c1a = since >= static_cast<std::size_t>(params_.max_frames_between_keyframes);
   const bool c1b =

@@ -1,8 +1,8 @@
 #pragma once
-// ORB-SLAM-style tracking for RGB-D and stereo (monocular initialisation comes later):
-// constant-velocity motion model with projection search, reference-keyframe fallback,
-// local-map tracking, pose-only optimisation, keyframe decision. Runs in the caller's thread;
-// holds Map::updateMutex() for one frame at a time.
+// ORB-SLAM-style tracking for RGB-D, stereo and monocular cameras (monocular: two-view
+// initialisation, tracker_monocular.cpp): constant-velocity motion model with projection search,
+// reference-keyframe fallback, local-map tracking, pose-only optimisation, keyframe decision. Runs
+// in the caller's thread; holds Map::updateMutex() for one frame at a time.
 #include <memory>
 #include <optional>
 #include <vector>
@@ -12,6 +12,7 @@
 #include "lumaslam/track/frame.h"
 #include "lumaslam/track/frame_camera.h"
 #include "lumaslam/track/keyframe_sink.h"
+#include "lumaslam/track/monocular_initializer.h"
 #include "lumaslam/track/trajectory_recorder.h"
 
 namespace lumaslam::track {
@@ -28,6 +29,8 @@ struct TrackerParams {
   float local_map_search_radius = 8.0F;
   float lost_search_radius = 40.0F;  // window when trying to recover from the last pose
   int max_local_keyframes = 80;
+  MonocularInitParams monocular{};
+  int min_initial_monocular_points = 50;  // after the initial bundle adjustment (ORB-SLAM3)
 };
 
 struct TrackingOutcome {
@@ -51,6 +54,8 @@ class Tracker {
 
  private:
   bool initialize();
+  bool initializeMonocular();  // tracker_monocular.cpp
+  bool createInitialMonocularMap(const InitialPair& pair);
   void updateLastFrame();
   bool trackWithMotionModel();
   bool trackFromPose(const SE3& T_c_w_prior, float radius);
@@ -88,6 +93,7 @@ class Tracker {
   std::vector<std::shared_ptr<map::MapPoint>> temporary_points_;  // last frame's VO points
   int inliers_ = 0;
   TrajectoryRecorder recorder_;
+  std::unique_ptr<MonocularInitializer> monocular_initializer_;
 };
 
 }  // namespace lumaslam::track

@@ -1,0 +1,38 @@
+// `lumaslam run` on real monocular data (its own executable: about a minute on a loaded
+// 2-core machine).
+#include <gtest/gtest.h>
+
+#include <fstream>
+
+#include <nlohmann/json.hpp>
+
+#include "lumaslam/io/trajectory_io.h"
+#include "test_cli.h"
+#include "test_trajectory_length.h"
+
+namespace {
+
+using lumaslam::test::pathLength;
+using lumaslam::test::runCli;
+using lumaslam::test::TempDir;
+
+// Real monocular data: the first 160 frames of KITTI odometry 07 (10 Hz, ~90 m with turns).
+TEST(CliRunKittiMono, Sequence07Excerpt) {
+  const auto sequence = lumaslam::test::dataDir() / "kitti/odometry_07_first160/sequences/07";
+  if (!std::filesystem::exists(sequence)) GTEST_SKIP() << sequence << " not present";
+  TempDir dir("cli_run_kitti_mono");
+  const auto settings = lumaslam::test::sourceDir() / "configs/kitti_04-12_mono.yaml";
+  const auto run = runCli("run --dataset kitti:" + sequence.string() + " --settings " +
+                          settings.string() + " --sequential --out " + dir.path().string());
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  std::ifstream summary_file(dir.path() / "summary.json");
+  const auto summary = nlohmann::json::parse(summary_file);
+  EXPECT_GE(summary["tracked"].get<double>(), 0.9 * summary["frames"].get<double>());
+  ASSERT_TRUE(summary.contains("evaluation")) << run.output;
+  EXPECT_EQ(summary["evaluation"]["alignment"]["mode"].get<std::string>(), "sim3");
+  const auto ground_truth = lumaslam::io::readTrajectory(
+      sequence.parent_path().parent_path() / "poses/07.txt", lumaslam::io::TrajectoryFormat::Kitti);
+  EXPECT_LT(summary["evaluation"]["ate"]["rmse"].get<double>(), 0.02 * pathLength(ground_truth));
+}
+
+}  // namespace
