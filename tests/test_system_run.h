@@ -32,9 +32,9 @@ struct RunResult {
 using SettingsEdit = std::function<std::string(std::string)>;
 
 struct RunConfig {
-  SettingsEdit edit;
-  std::optional<io::SensorType> sensor;  // nullopt: the preset's own sensor
-  bool sequential = true;                // false: local mapping in its own thread
+  SettingsEdit edit = {};
+  std::optional<io::SensorType> sensor = std::nullopt;  // nullopt: the preset's own sensor
+  bool sequential = true;                               // false: local mapping in its own thread
 };
 
 inline io::Settings presetSettings(const synth::SequenceRenderer& sequence,
