@@ -9,6 +9,7 @@
 
 #include "lumaslam/feature/scale_levels.h"
 #include "lumaslam/map/map.h"
+#include "lumaslam/track/dynamic_point_memory.h"
 #include "lumaslam/track/frame.h"
 #include "lumaslam/track/frame_camera.h"
 #include "lumaslam/track/keyframe_sink.h"
@@ -28,6 +29,7 @@ struct TrackerParams {
   float local_map_search_radius = 8.0F;
   float lost_search_radius = 40.0F;  // window when trying to recover from the last pose
   int max_local_keyframes = 80;
+  DynamicMemoryParams dynamic_memory;  // points failing near recent people boxes
 };
 
 struct TrackingOutcome {
@@ -48,6 +50,8 @@ class Tracker {
   TrackingState state() const { return state_; }
   const TrajectoryRecorder& trajectory() const { return recorder_; }
   const Frame& lastFrame() const { return last_; }
+  // Map points declared dynamic so far (failed the chi-square test near recent boxes).
+  std::size_t dynamicPointCount() const { return dynamic_memory_.dynamicCount(); }
 
  private:
   bool initialize();
@@ -63,6 +67,7 @@ class Tracker {
   int searchLocalPoints();
   int optimizeCurrentPose();
   int discardOutliers();
+  void cullDynamicPoints();
   void updateLocalMap();
   std::shared_ptr<map::MapPoint> newPointFromDepth(std::size_t i,
                                                    const std::shared_ptr<map::KeyFrame>& kf);
@@ -87,6 +92,7 @@ class Tracker {
   std::vector<std::shared_ptr<map::MapPoint>> local_points_;
   std::vector<std::shared_ptr<map::MapPoint>> temporary_points_;  // last frame's VO points
   int inliers_ = 0;
+  DynamicPointMemory dynamic_memory_;
   TrajectoryRecorder recorder_;
 };
 
