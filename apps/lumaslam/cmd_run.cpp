@@ -12,6 +12,7 @@ const bool registered = registerCommand(
       auto options = std::make_shared<RunOptions>();
       auto max_frames = std::make_shared<std::size_t>(0);
       auto enhance = std::make_shared<std::string>();
+      auto detector = std::make_shared<std::string>();
       cmd.add_option("--dataset", options->dataset,
                      "tum:PATH (RGB-D; stereo and mono are in progress), e.g. a TUM sequence or "
                      "the output of `lumaslam synth`")
@@ -21,13 +22,17 @@ const bool registered = registerCommand(
       cmd.add_option(
           "--enhance", *enhance,
           "Enhancement preset overriding Enhancement.preset (off, clahe, paper, best, ...)");
+      cmd.add_option("--detector", *detector,
+                     "Dynamic-object detector overriding Detector.*: yolo:MODEL.onnx, boxes:FILE "
+                     "(e.g. a synthetic dataset's detections.txt) or none");
       cmd.add_option("--out", options->out, "Output folder")->capture_default_str();
       cmd.add_option("--max-frames", *max_frames, "Stop after this many frames (0: all)");
       cmd.add_flag("--sequential", options->sequential,
                    "Run local mapping in the caller's thread (deterministic)");
-      return [options, max_frames, enhance] {
+      return [options, max_frames, enhance, detector] {
         if (*max_frames > 0) options->max_frames = *max_frames;
         if (!enhance->empty()) options->enhance_preset = *enhance;
+        if (!detector->empty()) options->detector = *detector;
         return runPipeline(*options);
       };
     });

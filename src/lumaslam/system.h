@@ -4,6 +4,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include <opencv2/core.hpp>
 
@@ -13,6 +14,10 @@
 
 namespace lumaslam {
 
+namespace detect {
+class DetectionWorker;
+struct DetectorParams;
+}  // namespace detect
 namespace enhance {
 class Enhancer;
 }
@@ -26,10 +31,14 @@ class FrameBuilder;
 struct SystemOptions {
   std::optional<std::string> enhance_preset;  // overrides Enhancement.preset ("off" disables)
   std::optional<bool> sequential;             // overrides System.sequential
+  // Overrides the Detector.* choice: "yolo:MODEL.onnx", "boxes:FILE" or "none".
+  std::optional<std::string> detector;
 };
 
 struct FrameTiming {  // milliseconds
   double enhance = 0, features = 0, tracking = 0, mapping = 0, total = 0;
+  double detection_wait = 0;  // tracking thread blocked on this frame's boxes
+  double detection = 0;       // detector thread's work on this frame (inference or propagation)
 };
 
 // One frame as the sensor delivered it. Which fields are needed depends on Settings::sensor.
@@ -45,6 +54,8 @@ struct SensorFrame {
 struct FrameResult {
   track::TrackingOutcome outcome;
   FrameTiming timing;
+  std::vector<cv::Rect2f> dynamic_boxes;      // this frame's detections (when a detector runs)
+  std::vector<cv::Point2f> dropped_features;  // keypoints removed by the dynamic mask
 };
 
 class System {
@@ -71,15 +82,27 @@ class System {
   std::size_t mapPointCount() const;
   const track::Tracker& tracker() const { return *tracker_; }
   const io::Settings& settings() const { return settings_; }
+  // "none", "yolo MODEL" or "box_file FILE".
+  const std::string& detectorDescription() const { return detector_description_; }
 
  private:
-  cv::Mat toGray(const cv::Mat& image, FrameTiming& timing);
+  struct Images {
+    cv::Mat gray;      // for ORB features
+    cv::Mat detector;  // for the detector: raw or enhanced colour (Detector.image)
+  };
+  Images prepareImages(const cv::Mat& image, FrameTiming& timing);
   cv::Mat depthInMetres(const SensorFrame& frame) const;
+  track::Frame buildFrame(const SensorFrame& input, const cv::Mat& gray, const cv::Mat& depth_m,
+                          FrameResult& result);
+  void removeDynamicFeatures(track::Frame& frame, const cv::Mat& depth_m, FrameResult& result);
 
   io::Settings settings_;
   bool sequential_ = false;
   std::shared_ptr<map::Map> map_;
   std::unique_ptr<enhance::Enhancer> enhancer_;
+  std::unique_ptr<detect::DetectorParams> detector_params_;
+  std::unique_ptr<detect::DetectionWorker> detector_;
+  std::string detector_description_ = "none";
   std::unique_ptr<track::FrameBuilder> frame_builder_;
   std::unique_ptr<mapping::LocalMapper> mapper_;
   std::unique_ptr<track::Tracker> tracker_;

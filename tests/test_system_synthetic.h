@@ -1,0 +1,71 @@
+#pragma once
+// Runs System on a synthetic sequence rendered in memory (RGB-D presets) and evaluates the
+// frame trajectory against the generator's ground truth. Shared by the test_system_* tests.
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <string>
+
+#include <spdlog/spdlog.h>
+
+#include "lumaslam/core/settings_file.h"
+#include "lumaslam/eval/evaluation.h"
+#include "lumaslam/io/settings.h"
+#include "lumaslam/synth/dataset_writer.h"
+#include "lumaslam/synth/sequence.h"
+#include "lumaslam/system.h"
+
+namespace lumaslam::test {
+
+struct SyntheticRun {
+  std::size_t frames = 0;
+  std::size_t tracked = 0;
+  std::size_t keyframes = 0;
+  std::size_t map_points = 0;
+  std::size_t dropped_features = 0;
+  eval::EvaluationReport report;
+  double ate() const { return report.ate.stats.rmse; }
+};
+
+// Called after every tracked frame with what the generator rendered and what System made of it.
+using FrameObserver = std::function<void(const synth::Frame&, const FrameResult&)>;
+
+// Enhancement off and local mapping in the caller's thread (repeatable) unless `options` says
+// otherwise.
+inline SyntheticRun runSynthetic(const synth::SequenceRenderer& sequence, SystemOptions options,
+                                 const FrameObserver& observe = {}) {
+  auto file = std::make_shared<const core::SettingsFile>(core::SettingsFile::fromString(
+      synth::settingsYaml(sequence), sequence.preset().name + ".yaml"));
+  const auto settings = io::Settings::fromFile(file);
+  if (!options.enhance_preset) options.enhance_preset = "off";
+  if (!options.sequential) options.sequential = true;
+  System system(settings, options);
+  Trajectory ground_truth;
+  SyntheticRun run;
+  for (int i = 0; i < sequence.frameCount(); ++i) {
+    const auto frame = sequence.render(i);
+    SensorFrame input;
+    input.index = static_cast<std::size_t>(i);
+    input.timestamp = frame.timestamp();
+    input.image = frame.cam0.image;
+    input.depth = frame.sensor_depth;
+    const auto result = system.track(input);
+    ground_truth.push_back({frame.timestamp(), frame.cam0.T_w_c});
+    if (result.outcome.state == track::TrackingState::Ok) ++run.tracked;
+    run.dropped_features += result.dropped_features.size();
+    if (observe) observe(frame, result);
+  }
+  system.shutdown();
+  run.frames = static_cast<std::size_t>(sequence.frameCount());
+  run.keyframes = system.keyFrameCount();
+  run.map_points = system.mapPointCount();
+  run.report = eval::evaluate(system.frameTrajectory(), ground_truth, eval::EvaluationOptions{});
+  spdlog::info(
+      "{} (detector {}): tracked {}/{}, {} keyframes, {} points, {} features dropped, "
+      "ATE rmse {:.4f} m",
+      sequence.preset().name, system.detectorDescription(), run.tracked, run.frames, run.keyframes,
+      run.map_points, run.dropped_features, run.ate());
+  return run;
+}
+
+}  // namespace lumaslam::test
