@@ -2,6 +2,8 @@
 // Runs System on a synthetic sequence rendered in memory (RGB-D presets) and evaluates the
 // frame trajectory against the generator's ground truth. Shared by the test_system_* tests.
 #include <cstdint>
+#include <filesystem>
+#include <fstream>
 #include <functional>
 #include <memory>
 #include <string>
@@ -27,15 +29,32 @@ struct SyntheticRun {
   double ate() const { return report.ate.stats.rmse; }
 };
 
+// Collects the generator's boxes of the frames it is given, in the detections.txt format
+// (`timestamp class x y w h`), for the box-file detector.
+class GroundTruthBoxes {
+ public:
+  void add(const synth::Frame& frame) {
+    for (const auto& b : frame.cam0.boxes) {
+      text_ += fmt::format("{:.9f} {} {} {} {} {}\n", frame.timestamp(), b.class_name, b.box.x,
+                           b.box.y, b.box.width, b.box.height);
+    }
+  }
+  void write(const std::filesystem::path& path) const { std::ofstream(path) << text_; }
+
+ private:
+  std::string text_;
+};
+
 // Called after every tracked frame with what the generator rendered and what System made of it.
 using FrameObserver = std::function<void(const synth::Frame&, const FrameResult&)>;
 
 // Enhancement off and local mapping in the caller's thread (repeatable) unless `options` says
-// otherwise.
+// otherwise. `extra_settings`: YAML lines appended to the generator's settings.yaml.
 inline SyntheticRun runSynthetic(const synth::SequenceRenderer& sequence, SystemOptions options,
-                                 const FrameObserver& observe = {}) {
+                                 const FrameObserver& observe = {},
+                                 const std::string& extra_settings = {}) {
   auto file = std::make_shared<const core::SettingsFile>(core::SettingsFile::fromString(
-      synth::settingsYaml(sequence), sequence.preset().name + ".yaml"));
+      synth::settingsYaml(sequence) + extra_settings, sequence.preset().name + ".yaml"));
   const auto settings = io::Settings::fromFile(file);
   if (!options.enhance_preset) options.enhance_preset = "off";
   if (!options.sequential) options.sequential = true;
