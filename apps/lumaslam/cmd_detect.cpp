@@ -185,7 +185,10 @@ int runOnVideo(const DetectOptions& options) {
         drawFeatures(annotated, image, result.detections, params.mask.margin_px);
       drawDetections(annotated, result.detections,
                      result.propagated ? cv::Scalar(0, 200, 255) : cv::Scalar(0, 255, 0));
-      writeAnnotated(options.output_dir, fmt::format("{:06d}.jpg", index), annotated, {});
+      // PNG with features: the dots must stay sharp.
+      writeAnnotated(options.output_dir,
+                     fmt::format("{:06d}.{}", index, options.draw_features ? "png" : "jpg"),
+                     annotated, {});
     }
     ++index;
   }
@@ -317,7 +320,7 @@ const bool registered = lumaslam::cli::registerCommand(
                      "enhance every image with this preset first");
       cmd.add_flag("--draw-features", options->draw_features,
                    "--output: also draw the ORB features, kept (green) and dropped by the "
-                   "dynamic mask (red)");
+                   "dynamic mask (red); video frames are then written as PNG");
       return [options] { return runDetect(*options); };
     });
 
