@@ -4,7 +4,7 @@
 
 #include "lumaslam/core/error.h"
 #include "test_paths.h"
-#include "test_system_synthetic.h"
+#include "test_system_dynamic.h"
 
 namespace {
 
@@ -83,9 +83,7 @@ TEST(SystemDynamic, YoloDetectorDropsFeaturesInsideItsBoxes) {
 
 TEST(SystemDynamic, BadDetectorSpecsFailAtConstruction) {
   const synth::SequenceRenderer sequence(synth::findPreset("walking-xyz-rgbd"), 2, 1);
-  auto file = std::make_shared<const core::SettingsFile>(
-      core::SettingsFile::fromString(synth::settingsYaml(sequence), "walking.yaml"));
-  const auto settings = io::Settings::fromFile(file);
+  const auto settings = test::presetSettings(sequence);
   const auto message = [&](const std::string& spec) {
     SystemOptions options;
     options.detector = spec;

@@ -4,7 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "test_paths.h"
-#include "test_system_synthetic.h"
+#include "test_system_dynamic.h"
 
 namespace {
 

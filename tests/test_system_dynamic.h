@@ -1,21 +1,14 @@
 #pragma once
-// Runs System on a synthetic sequence rendered in memory (RGB-D presets) and evaluates the
-// frame trajectory against the generator's ground truth. Shared by the test_system_* tests.
-#include <cstdint>
+// Runs System with a detector on a synthetic RGB-D sequence rendered in memory, reporting
+// per frame what it dropped, and evaluates the trajectory: shared by the dynamic-removal tests.
 #include <filesystem>
 #include <fstream>
 #include <functional>
-#include <memory>
 #include <string>
 
 #include <spdlog/spdlog.h>
 
-#include "lumaslam/core/settings_file.h"
-#include "lumaslam/eval/evaluation.h"
-#include "lumaslam/io/settings.h"
-#include "lumaslam/synth/dataset_writer.h"
-#include "lumaslam/synth/sequence.h"
-#include "lumaslam/system.h"
+#include "test_system_run.h"
 
 namespace lumaslam::test {
 
@@ -53,22 +46,15 @@ using FrameObserver = std::function<void(const synth::Frame&, const FrameResult&
 inline SyntheticRun runSynthetic(const synth::SequenceRenderer& sequence, SystemOptions options,
                                  const FrameObserver& observe = {},
                                  const std::string& extra_settings = {}) {
-  auto file = std::make_shared<const core::SettingsFile>(core::SettingsFile::fromString(
-      synth::settingsYaml(sequence) + extra_settings, sequence.preset().name + ".yaml"));
-  const auto settings = io::Settings::fromFile(file);
   if (!options.enhance_preset) options.enhance_preset = "off";
   if (!options.sequential) options.sequential = true;
-  System system(settings, options);
+  System system(presetSettings(sequence, [&](std::string yaml) { return yaml + extra_settings; }),
+                options);
   Trajectory ground_truth;
   SyntheticRun run;
   for (int i = 0; i < sequence.frameCount(); ++i) {
     const auto frame = sequence.render(i);
-    SensorFrame input;
-    input.index = static_cast<std::size_t>(i);
-    input.timestamp = frame.timestamp();
-    input.image = frame.cam0.image;
-    input.depth = frame.sensor_depth;
-    const auto result = system.track(input);
+    const auto result = system.track(sensorFrame(frame));
     ground_truth.push_back({frame.timestamp(), frame.cam0.T_w_c});
     if (result.outcome.state == track::TrackingState::Ok) ++run.tracked;
     run.dropped_features += result.dropped_features.size();
