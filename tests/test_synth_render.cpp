@@ -105,6 +105,28 @@ TEST(SynthRender, WalkersAreMaskedAndBoxesCoverTheirPixels) {
   EXPECT_GT(max_box_fraction, 0.12);  // people come close enough to fill a good part of the view
 }
 
+TEST(SynthRender, MovingBoxesAreLabelledDynamicObjects) {
+  const SequenceRenderer sequence(findPreset("walking-xyz-rgbd"), 150, 1);
+  const auto snapshot = sequence.scene().at(1.0, Eigen::Vector3d::Zero());
+  int labelled = 0;
+  for (const auto& box : snapshot.boxes) {
+    if (box.object_id == 0) continue;
+    ++labelled;
+    EXPECT_EQ(sequence.scene().objectClass(box.object_id), "box");
+    for (const int lightmap : box.lightmaps) EXPECT_EQ(lightmap, -1);  // lit per pixel
+  }
+  EXPECT_EQ(labelled, 1);
+  // Seed 1 drives the box through the view around frame 40: it is masked and boxed.
+  const Frame frame = sequence.render(40);
+  int boxes = 0;
+  for (const auto& box : frame.cam0.boxes) {
+    if (box.class_name != "box") continue;
+    ++boxes;
+    EXPECT_GT(cv::countNonZero(frame.cam0.mask(box.box)), box.box.area() / 4);
+  }
+  EXPECT_EQ(boxes, 1);
+}
+
 TEST(SynthRender, StereoRigHasBaselineAndRightImage) {
   const SequenceRenderer sequence(findPreset("xyz-stereo"), 20, 4);
   const Frame frame = sequence.render(5);

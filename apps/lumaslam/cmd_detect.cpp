@@ -24,7 +24,9 @@
 #include "lumaslam/detect/detection_eval.h"
 #include "lumaslam/detect/detection_worker.h"
 #include "lumaslam/detect/detector_factory.h"
+#include "lumaslam/detect/dynamic_mask.h"
 #include "lumaslam/enhance/enhancer.h"
+#include "lumaslam/feature/orb_extractor.h"
 
 namespace {
 
@@ -46,6 +48,7 @@ struct DetectOptions {
   float min_iou = 0.5f;
   std::string enhance_preset;
   int max_frames = 0;
+  bool draw_features = false;
 };
 
 detect::DetectorParams paramsFrom(const DetectOptions& options) {
@@ -108,6 +111,27 @@ void drawDetections(cv::Mat& image, const detect::Detections& detections,
   }
 }
 
+// What dynamic-object removal does to a frame: ORB features (1000, as tracking) kept in green,
+// the ones the dynamic mask (boxes grown by the margin) drops in red.
+void drawFeatures(cv::Mat& image, const cv::Mat& source, const detect::Detections& detections,
+                  int margin_px) {
+  cv::Mat gray = source;
+  if (source.channels() == 3) cv::cvtColor(source, gray, cv::COLOR_BGR2GRAY);
+  const auto keypoints = feature::OrbExtractor(feature::OrbSettings{}).extract(gray).keypoints;
+  const cv::Mat mask = detect::makeDynamicMask(gray.size(), detect::boxesOf(detections), margin_px);
+  const auto kept = detect::filterKeypoints(keypoints, mask);
+  std::vector<bool> is_kept(keypoints.size(), false);
+  for (const int i : kept) is_kept[static_cast<std::size_t>(i)] = true;
+  for (std::size_t i = 0; i < keypoints.size(); ++i) {
+    cv::circle(image, keypoints[i].pt, 3,
+               is_kept[i] ? cv::Scalar(0, 220, 0) : cv::Scalar(0, 0, 255), is_kept[i] ? 1 : -1);
+  }
+  cv::putText(
+      image,
+      fmt::format("{} features, {} dropped", keypoints.size(), keypoints.size() - kept.size()),
+      {8, 20}, cv::FONT_HERSHEY_SIMPLEX, 0.6, {255, 255, 255}, 2);
+}
+
 void writeAnnotated(const fs::path& dir, const std::string& name, cv::Mat image,
                     const detect::Detections& detections) {
   drawDetections(image, detections, {0, 255, 0});
@@ -116,14 +140,19 @@ void writeAnnotated(const fs::path& dir, const std::string& name, cv::Mat image,
 }
 
 int runOnImages(const DetectOptions& options, const std::vector<fs::path>& images) {
-  auto detector = detect::makeDetector(paramsFrom(options));
+  const auto params = paramsFrom(options);
+  const int margin_px = params.mask.margin_px;
+  auto detector = detect::makeDetector(params);
   Preprocessor preprocess(options.enhance_preset);
   for (std::size_t i = 0; i < images.size(); ++i) {
     const cv::Mat image = preprocess(readImage(images[i]));
     const auto detections = detector->detect(image, static_cast<double>(i));
     printDetections(images[i].filename().string(), detections);
-    if (!options.output_dir.empty())
-      writeAnnotated(options.output_dir, images[i].filename().string(), image, detections);
+    if (!options.output_dir.empty()) {
+      cv::Mat annotated = image.clone();
+      if (options.draw_features) drawFeatures(annotated, image, detections, margin_px);
+      writeAnnotated(options.output_dir, images[i].filename().string(), annotated, detections);
+    }
   }
   return 0;
 }
@@ -152,9 +181,14 @@ int runOnVideo(const DetectOptions& options) {
     printDetections(fmt::format("{:06d}", index), result.detections);
     if (!options.output_dir.empty()) {
       cv::Mat annotated = image.clone();
+      if (options.draw_features)
+        drawFeatures(annotated, image, result.detections, params.mask.margin_px);
       drawDetections(annotated, result.detections,
                      result.propagated ? cv::Scalar(0, 200, 255) : cv::Scalar(0, 255, 0));
-      writeAnnotated(options.output_dir, fmt::format("{:06d}.jpg", index), annotated, {});
+      // PNG with features: the dots must stay sharp.
+      writeAnnotated(options.output_dir,
+                     fmt::format("{:06d}.{}", index, options.draw_features ? "png" : "jpg"),
+                     annotated, {});
     }
     ++index;
   }
@@ -284,6 +318,9 @@ const bool registered = lumaslam::cli::registerCommand(
           ->check(CLI::Range(0.0, 1.0));
       cmd.add_option("--enhance", options->enhance_preset,
                      "enhance every image with this preset first");
+      cmd.add_flag("--draw-features", options->draw_features,
+                   "--output: also draw the ORB features, kept (green) and dropped by the "
+                   "dynamic mask (red); video frames are then written as PNG");
       return [options] { return runDetect(*options); };
     });
 

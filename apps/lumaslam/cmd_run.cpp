@@ -14,15 +14,21 @@ const bool registered = registerCommand(
       auto max_frames = std::make_shared<std::size_t>(0);
       auto enhance = std::make_shared<std::string>();
       auto repeats = std::make_shared<int>(1);
-      cmd.add_option("--dataset", options->dataset,
-                     "tum:PATH (RGB-D), euroc:PATH or kitti:PATH (stereo; mono is in progress), "
-                     "e.g. a dataset or the output of `lumaslam synth`")
+      auto detector = std::make_shared<std::string>();
+      cmd.add_option(
+             "--dataset", options->dataset,
+             "tum:PATH, euroc:PATH, kitti:PATH, folder:PATH or video:FILE (the settings say "
+             "mono, stereo or RGB-D), "
+             "e.g. a dataset or the output of `lumaslam synth`")
           ->required();
       cmd.add_option("--settings", options->settings,
                      "ORB-SLAM3-style settings YAML (default: PATH/settings.yaml)");
       cmd.add_option(
           "--enhance", *enhance,
           "Enhancement preset overriding Enhancement.preset (off, clahe, paper, best, ...)");
+      cmd.add_option("--detector", *detector,
+                     "Dynamic-object detector overriding Detector.*: yolo:MODEL.onnx, boxes:FILE "
+                     "(e.g. a synthetic dataset's detections.txt) or none");
       cmd.add_option("--out", options->out, "Output folder")->capture_default_str();
       cmd.add_option("--max-frames", *max_frames, "Stop after this many frames (0: all)");
       cmd.add_flag("--sequential", options->sequential,
@@ -30,9 +36,10 @@ const bool registered = registerCommand(
       cmd.add_option("--repeat", *repeats,
                      "Run N times into OUT/run_K and report the min/median/max spread")
           ->check(CLI::PositiveNumber);
-      return [options, max_frames, enhance, repeats] {
+      return [options, max_frames, enhance, detector, repeats] {
         if (*max_frames > 0) options->max_frames = *max_frames;
         if (!enhance->empty()) options->enhance_preset = *enhance;
+        if (!detector->empty()) options->detector = *detector;
         return *repeats > 1 ? runRepeated(*options, *repeats) : runPipeline(*options);
       };
     });

@@ -53,16 +53,19 @@ int runPipeline(const RunOptions& options) {
 
   SystemOptions system_options;
   system_options.enhance_preset = options.enhance_preset;
+  system_options.detector = options.detector;
   if (options.sequential) system_options.sequential = true;
   System system(settings, system_options);
 
   std::ofstream timing(options.out / "timing.csv");
-  timing
-      << "frame,timestamp,state,inliers,enhance_ms,features_ms,tracking_ms,mapping_ms,total_ms\n";
+  timing << "frame,timestamp,state,inliers,enhance_ms,features_ms,tracking_ms,mapping_ms,total_ms,"
+            "detection_wait_ms,detection_ms,boxes,dropped_features\n";
   const bool progress = isatty(STDERR_FILENO) != 0;
   std::vector<double> totals;
   std::size_t tracked = 0;
   std::size_t frames = 0;
+  double dropped_sum = 0.0;
+  double wait_sum = 0.0;
   while (auto frame = reader->next()) {
     const auto result = system.track(toSensorFrame(*frame));
     const auto& t = result.timing;
@@ -70,7 +73,11 @@ int runPipeline(const RunOptions& options) {
            << track::toString(result.outcome.state) << ',' << result.outcome.inliers << ','
            << fmt::format("{:.3f},{:.3f},{:.3f},{:.3f},{:.3f}", t.enhance, t.features, t.tracking,
                           t.mapping, t.total)
+           << fmt::format(",{:.3f},{:.3f},{},{}", t.detection_wait, t.detection,
+                          result.dynamic_boxes.size(), result.dropped_features.size())
            << '\n';
+    dropped_sum += static_cast<double>(result.dropped_features.size());
+    wait_sum += t.detection_wait;
     totals.push_back(t.total);
     ++frames;
     if (result.outcome.state == track::TrackingState::Ok) ++tracked;
@@ -97,6 +104,9 @@ int runPipeline(const RunOptions& options) {
                             {"keyframes", system.keyFrameCount()},
                             {"map_points", system.mapPointCount()},
                             {"ms_per_frame", {{"mean", mean}, {"median", median(totals)}}}};
+  summary["detector"] = {{"name", system.detectorDescription()},
+                         {"dropped_features_per_frame", dropped_sum / static_cast<double>(frames)},
+                         {"wait_ms_per_frame", wait_sum / static_cast<double>(frames)}};
   std::printf("%s: %zu frames, %zu tracked, %zu lost, %zu keyframes, %.1f ms/frame median\n",
               options.dataset.c_str(), frames, tracked, frames - tracked, system.keyFrameCount(),
               median(totals));

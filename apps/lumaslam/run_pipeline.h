@@ -12,6 +12,7 @@ struct RunOptions {
   std::filesystem::path settings;  // empty: DATASET_PATH/settings.yaml (synthetic datasets)
   std::string dataset;             // tum:PATH, euroc:PATH, ...
   std::optional<std::string> enhance_preset;
+  std::optional<std::string> detector;  // yolo:MODEL.onnx | boxes:FILE | none (else settings)
   std::filesystem::path out = "lumaslam_out";
   std::optional<std::size_t> max_frames;
   bool sequential = false;

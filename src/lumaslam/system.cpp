@@ -1,6 +1,7 @@
 #include "lumaslam/system.h"
 
 #include <chrono>
+#include <functional>
 #include <future>
 
 #include <spdlog/spdlog.h>
@@ -8,9 +9,14 @@
 
 #include "lumaslam/camera/stereo_rectifier.h"
 #include "lumaslam/core/error.h"
+#include "lumaslam/detect/detection_worker.h"
+#include "lumaslam/detect/detector_factory.h"
+#include "lumaslam/detect/detector_spec.h"
+#include "lumaslam/detect/dynamic_mask.h"
 #include "lumaslam/enhance/enhancer.h"
 #include "lumaslam/io/dataset_reader.h"
 #include "lumaslam/mapping/local_mapper.h"
+#include "lumaslam/track/feature_subset.h"
 #include "lumaslam/track/frame_builder.h"
 
 namespace lumaslam {
@@ -90,6 +96,13 @@ System::System(const io::Settings& settings, const SystemOptions& options)
     // The right image gets its own online statistics (the enhancer learns from every frame).
     if (stereo) right_enhancer_ = std::make_unique<enhance::Enhancer>(enhancer_params);
   }
+  if (auto params = detect::detectorParamsFor(settings_.file.get(), options.detector)) {
+    // makeDetector fails here, at startup, for a missing or invalid model / box file.
+    detector_ = std::make_unique<detect::DetectionWorker>(detect::makeDetector(*params),
+                                                          detect::WorkerParams::from(*params));
+    detector_description_ = detect::describeChoice(params);
+    detector_params_ = std::make_unique<detect::DetectorParams>(std::move(*params));
+  }
 
   const auto camera = frameCameraFrom(settings_, rectifier_.get());
   frame_builder_ = std::make_unique<track::FrameBuilder>(camera, orbSettingsFrom(settings_));
@@ -106,6 +119,10 @@ System::System(const io::Settings& settings, const SystemOptions& options)
     // (~480 matches of 1200 features per frame, against ~580 without).
     tracker_params.min_initial_features = 250;
   }
+  if (detector_params_) {
+    tracker_params.dynamic_memory.frames = detector_params_->memory_frames;
+    tracker_params.dynamic_memory.strikes = detector_params_->memory_strikes;
+  }
   tracker_ = std::make_unique<track::Tracker>(map_, *mapper_, camera, frame_builder_->pyramid(),
                                               frame_builder_->extractor().levels(), tracker_params);
 }
@@ -115,29 +132,31 @@ System::~System() {
 }
 
 void System::shutdown() {
+  if (detector_) detector_->stop();
   if (mapper_) mapper_->shutdown();
 }
 
-cv::Mat System::toGray(const cv::Mat& image, FrameTiming& timing) {
+System::Images System::prepareImages(const cv::Mat& image, FrameTiming& timing) {
   if (image.empty()) fail("empty image");
   if (image.depth() != CV_8U) fail("expected an 8-bit image, got depth {}", image.depth());
+  const bool enhanced_for_detector = detector_params_ && detector_params_->image == "enhanced";
   if (enhancer_) {
     const auto start = Clock::now();
     auto enhanced = enhancer_->enhance(image);
     timing.enhance = msSince(start);
-    return enhanced.gray;
+    return {enhanced.gray, enhanced_for_detector ? enhanced.colour : image};
   }
-  if (image.channels() == 1) return image;
+  if (image.channels() == 1) return {image, image};
   cv::Mat gray;
   cv::cvtColor(image, gray, image.channels() == 4 ? cv::COLOR_BGRA2GRAY : cv::COLOR_BGR2GRAY);
-  return gray;
+  return {gray, image};
 }
 
-// Runs beside toGray() of the left image: without enhancement, toGray() touches no state.
+// Runs beside prepareImages() of the left image: without enhancement, that touches no state.
 cv::Mat System::rightGray(const cv::Mat& image, FrameTiming& timing) {
   if (!right_enhancer_) {
     FrameTiming unused;
-    return toGray(image, unused);
+    return prepareImages(image, unused).gray;
   }
   const auto start = Clock::now();
   auto enhanced = right_enhancer_->enhance(image);
@@ -179,7 +198,8 @@ cv::Mat System::depthInMetres(const SensorFrame& frame) const {
   return depth_m;
 }
 
-track::Frame System::buildStereoFrame(const SensorFrame& frame, FrameTiming& timing) {
+track::Frame System::buildStereoFrame(const SensorFrame& frame, FrameResult& result) {
+  FrameTiming& timing = result.timing;
   if (frame.image.empty()) fail("frame {}: the left image is empty", frame.index);
   if (frame.right.empty()) fail("frame {}: stereo tracking needs a right image", frame.index);
   if (frame.right.size() != frame.image.size() || frame.right.type() != frame.image.type()) {
@@ -202,15 +222,74 @@ track::Frame System::buildStereoFrame(const SensorFrame& frame, FrameTiming& tim
   const cv::Mat mask = rectifier_ && !frame.dynamic_mask.empty()
                            ? rectifier_->rectifyLeft(frame.dynamic_mask)
                            : frame.dynamic_mask;
-  const cv::Mat gray_left = toGray(left, timing);
+  const auto images = prepareImages(left, timing);
+  pushForDetection(frame, images.detector);
   const double left_enhance_ms = timing.enhance;
   const cv::Mat gray_right = right_job.get();
   timing.enhance += right_timing.enhance;  // work of both, partly overlapped
 
-  auto built =
-      frame_builder_->buildStereo(frame.index, frame.timestamp, gray_left, gray_right, mask);
-  timing.features = msSince(start) - left_enhance_ms;
-  return built;
+  return withoutDynamicFeatures(frame, cv::Mat(), result, [&] {
+    auto built =
+        frame_builder_->buildStereo(frame.index, frame.timestamp, images.gray, gray_right, mask);
+    timing.features = msSince(start) - left_enhance_ms;
+    return built;
+  });
+}
+
+void System::pushForDetection(const SensorFrame& input, const cv::Mat& detector_image) {
+  if (detector_) {
+    detector_->push(static_cast<std::int64_t>(input.index), input.timestamp, detector_image);
+  }
+}
+
+// ORB extraction (`build`); with a detector, the detection of this frame runs meanwhile on its
+// thread (paper section 3.2) and the features on moving objects are dropped afterwards.
+track::Frame System::withoutDynamicFeatures(const SensorFrame& input, const cv::Mat& depth_m,
+                                            FrameResult& result,
+                                            const std::function<track::Frame()>& build) {
+  try {
+    auto frame = build();
+    if (detector_) removeDynamicFeatures(frame, depth_m, result);
+    return frame;
+  } catch (...) {
+    if (detector_) {
+      try {
+        detector_->take(static_cast<std::int64_t>(input.index));  // not left pending
+      } catch (const Error&) {
+      }
+    }
+    throw;
+  }
+}
+
+void System::removeDynamicFeatures(track::Frame& frame, const cv::Mat& depth_m,
+                                   FrameResult& result) {
+  const auto wait = Clock::now();
+  const auto detections = detector_->take(static_cast<std::int64_t>(frame.index));
+  result.timing.detection_wait = msSince(wait);
+  result.timing.detection = detections.compute_ms;
+  result.dynamic_boxes = detect::boxesOf(detections.detections);
+  frame.dynamic_boxes = result.dynamic_boxes;
+  if (result.dynamic_boxes.empty()) return;
+
+  const auto& mask_params = detector_params_->mask;
+  cv::Mat mask = detect::makeDynamicMask(frame_builder_->camera().size, result.dynamic_boxes,
+                                         mask_params.margin_px);
+  // RGB-D: the background seen behind a person keeps its features.
+  if (!depth_m.empty())
+    mask = detect::refineMaskWithDepth(mask, depth_m, result.dynamic_boxes, mask_params);
+  const auto& keypoints = frame.features->keypoints;
+  const auto kept = detect::filterKeypoints(keypoints, mask);
+  if (kept.size() == keypoints.size()) return;
+  std::size_t next_kept = 0;
+  for (std::size_t i = 0; i < keypoints.size(); ++i) {
+    if (next_kept < kept.size() && kept[next_kept] == static_cast<int>(i)) {
+      ++next_kept;
+    } else {
+      result.dropped_features.push_back(keypoints[i].pt);
+    }
+  }
+  track::keepFeatures(frame, kept);
 }
 
 FrameResult System::track(const SensorFrame& input) {
@@ -218,14 +297,19 @@ FrameResult System::track(const SensorFrame& input) {
   FrameResult result;
   std::optional<track::Frame> frame;
   if (settings_.sensor == io::SensorType::Stereo) {
-    frame = buildStereoFrame(input, result.timing);
+    frame = buildStereoFrame(input, result);
   } else {
-    const cv::Mat gray = toGray(input.image, result.timing);
+    const auto images = prepareImages(input.image, result.timing);
     const cv::Mat depth_m =
         settings_.sensor == io::SensorType::Rgbd ? depthInMetres(input) : cv::Mat();
-    const auto stage = Clock::now();
-    frame = frame_builder_->build(input.index, input.timestamp, gray, depth_m, input.dynamic_mask);
-    result.timing.features = msSince(stage);
+    pushForDetection(input, images.detector);
+    frame = withoutDynamicFeatures(input, depth_m, result, [&] {
+      const auto stage = Clock::now();
+      auto built = frame_builder_->build(input.index, input.timestamp, images.gray, depth_m,
+                                         input.dynamic_mask);
+      result.timing.features = msSince(stage);
+      return built;
+    });
   }
   auto stage = Clock::now();
   result.outcome = tracker_->track(std::move(*frame));

@@ -1,9 +1,11 @@
 #pragma once
 // The facade the CLI and tests use: feed frames, get poses. Owns the map, the tracker (runs in
 // the caller's thread) and the local mapper (own thread, or inline when System.sequential).
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include <opencv2/core.hpp>
 
@@ -16,6 +18,10 @@ namespace lumaslam {
 namespace camera {
 class StereoRectifier;
 }
+namespace detect {
+class DetectionWorker;
+struct DetectorParams;
+}  // namespace detect
 namespace enhance {
 class Enhancer;
 }
@@ -32,10 +38,14 @@ class FrameBuilder;
 struct SystemOptions {
   std::optional<std::string> enhance_preset;  // overrides Enhancement.preset ("off" disables)
   std::optional<bool> sequential;             // overrides System.sequential
+  // Overrides the Detector.* choice: "yolo:MODEL.onnx", "boxes:FILE" or "none".
+  std::optional<std::string> detector;
 };
 
 struct FrameTiming {  // milliseconds
   double enhance = 0, features = 0, tracking = 0, mapping = 0, total = 0;
+  double detection_wait = 0;  // tracking thread blocked on this frame's boxes
+  double detection = 0;       // detector thread's work on this frame (inference or propagation)
 };
 
 // One frame as the sensor delivered it. Which fields are needed depends on Settings::sensor.
@@ -55,6 +65,8 @@ SensorFrame toSensorFrame(const io::FrameData& frame);
 struct FrameResult {
   track::TrackingOutcome outcome;
   FrameTiming timing;
+  std::vector<cv::Rect2f> dynamic_boxes;      // this frame's detections (when a detector runs)
+  std::vector<cv::Point2f> dropped_features;  // keypoints removed by the dynamic mask
 };
 
 class System {
@@ -88,14 +100,25 @@ class System {
   const io::Settings& settings() const { return settings_; }
   // The camera tracking works in (the rectified one for an unrectified stereo pair).
   const track::FrameCamera& frameCamera() const;
+  // "none", "yolo MODEL" or "box_file FILE".
+  const std::string& detectorDescription() const { return detector_description_; }
 
  private:
-  cv::Mat toGray(const cv::Mat& image, FrameTiming& timing);
+  struct Images {
+    cv::Mat gray;      // for ORB features
+    cv::Mat detector;  // for the detector: raw or enhanced colour (Detector.image)
+  };
+  Images prepareImages(const cv::Mat& image, FrameTiming& timing);
   cv::Mat depthInMetres(const SensorFrame& frame) const;
   cv::Mat rightGray(const cv::Mat& image, FrameTiming& timing);  // stereo right image
-  track::Frame buildStereoFrame(const SensorFrame& frame, FrameTiming& timing);
+  track::Frame buildStereoFrame(const SensorFrame& frame, FrameResult& result);
   SE3 toCalibratedCamera(const SE3& T_w_c) const;  // identity unless rectifying
   Trajectory toCalibratedCamera(Trajectory trajectory) const;
+  void pushForDetection(const SensorFrame& input, const cv::Mat& detector_image);
+  track::Frame withoutDynamicFeatures(const SensorFrame& input, const cv::Mat& depth_m,
+                                      FrameResult& result,
+                                      const std::function<track::Frame()>& build);
+  void removeDynamicFeatures(track::Frame& frame, const cv::Mat& depth_m, FrameResult& result);
 
   io::Settings settings_;
   bool sequential_ = false;
@@ -103,6 +126,9 @@ class System {
   std::unique_ptr<enhance::Enhancer> enhancer_;
   std::unique_ptr<enhance::Enhancer> right_enhancer_;   // stereo: the right image's own
   std::unique_ptr<camera::StereoRectifier> rectifier_;  // unrectified stereo pairs only
+  std::unique_ptr<detect::DetectorParams> detector_params_;
+  std::unique_ptr<detect::DetectionWorker> detector_;
+  std::string detector_description_ = "none";
   std::unique_ptr<track::FrameBuilder> frame_builder_;
   std::unique_ptr<mapping::LocalMapper> mapper_;
   std::unique_ptr<track::Tracker> tracker_;

@@ -40,12 +40,13 @@ std::vector<std::string> splitClassList(const std::string& text) {
   return items;
 }
 
-DetectorParams DetectorParams::fromSettings(const core::SettingsFile& settings) {
+DetectorParams DetectorParams::fromSettings(const core::SettingsFile& settings,
+                                            bool require_source) {
   DetectorParams p;
   read(settings, "Detector.type", p.type);
-  if (p.type != "yolo" && p.type != "box_file") {
+  if (p.type != "yolo" && p.type != "box_file" && p.type != "none") {
     settings.invalid("Detector.type",
-                     fmt::format("expected 'yolo' or 'box_file', found '{}'", p.type));
+                     fmt::format("expected 'yolo', 'box_file' or 'none', found '{}'", p.type));
   }
   if (auto model = settings.find<std::string>("Detector.model")) p.model = *model;
   if (auto names = settings.find<std::string>("Detector.names")) p.names = *names;
@@ -66,6 +67,15 @@ DetectorParams DetectorParams::fromSettings(const core::SettingsFile& settings) 
   read(settings, "Detector.mask_margin", p.mask.margin_px);
   read(settings, "Detector.depth_tolerance", p.mask.depth_tolerance_m);
   read(settings, "Detector.depth_percentile", p.mask.depth_percentile);
+  read(settings, "Detector.image", p.image);
+  read(settings, "Detector.memory_frames", p.memory_frames);
+  read(settings, "Detector.memory_strikes", p.memory_strikes);
+  requireAtLeast(settings, "Detector.memory_frames", p.memory_frames, 0);
+  requireAtLeast(settings, "Detector.memory_strikes", p.memory_strikes, 1);
+  if (p.image != "raw" && p.image != "enhanced") {
+    settings.invalid("Detector.image",
+                     fmt::format("expected 'raw' or 'enhanced', found '{}'", p.image));
+  }
 
   if (p.input_size != 0 && (p.input_size < 32 || p.input_size % 32 != 0)) {
     settings.invalid(
@@ -84,6 +94,7 @@ DetectorParams DetectorParams::fromSettings(const core::SettingsFile& settings) 
   requireAtLeast(settings, "Detector.mask_margin", p.mask.margin_px, 0);
   requireAtLeast(settings, "Detector.depth_tolerance", p.mask.depth_tolerance_m, 0.0);
   requireInRange(settings, "Detector.depth_percentile", p.mask.depth_percentile, 0.0, 1.0);
+  if (!require_source) return p;
   if (p.type == "yolo" && p.model.empty())
     settings.invalid("Detector.model", "is required for Detector.type yolo");
   if (p.type == "box_file" && p.box_file.empty()) {

@@ -23,7 +23,7 @@ struct MaskParams {
 };
 
 struct DetectorParams {
-  std::string type = "yolo";    // Detector.type: yolo | box_file
+  std::string type = "yolo";    // Detector.type: yolo | box_file | none
   std::filesystem::path model;  // Detector.model (ONNX)
   std::filesystem::path names;  // Detector.names (default: coco80.names next to the model)
   int input_size = 0;           // Detector.input_size: 0 = read from the model
@@ -38,10 +38,20 @@ struct DetectorParams {
   int queue_capacity = 4;                      // Detector.queue_capacity: frames waiting
   PropagationParams propagation;               // Detector.propagation_*
   MaskParams mask;                             // Detector.mask_margin, Detector.depth_*
+  // Detector.memory_frames / memory_strikes: tracking's memory of recent boxes; a map point
+  // failing the chi-square test this many times near one is dynamic (0 frames = off).
+  int memory_frames = 15;
+  int memory_strikes = 2;
+  // Detector.image: what the detector sees in a SLAM run, "raw" (the camera image) or
+  // "enhanced" (the enhanced colour image); raw by default (measured, docs/dynamic.md).
+  std::string image = "raw";
 
   // Reads every Detector.* key present; absent keys keep their defaults. Throws Error
-  // naming the file and key for a wrong type or an out-of-range value.
-  static DetectorParams fromSettings(const core::SettingsFile& settings);
+  // naming the file and key for a wrong type or an out-of-range value, and (unless
+  // require_source is false) for a yolo type without Detector.model / box_file type without
+  // Detector.box_file.
+  static DetectorParams fromSettings(const core::SettingsFile& settings,
+                                     bool require_source = true);
 
   // names, or coco80.names in the model's folder when names is empty.
   std::filesystem::path namesPath() const;

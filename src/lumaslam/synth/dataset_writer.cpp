@@ -283,6 +283,15 @@ std::string settingsYaml(const SequenceRenderer& sequence) {
       "ORBextractor.nLevels: 8\n"
       "ORBextractor.iniThFAST: 20\n"
       "ORBextractor.minThFAST: 7\n";
+  // The classes detections.txt uses, so `lumaslam run --detector boxes:detections.txt`
+  // removes every moving object (YOLO knows no "box": use "person" for it).
+  std::string classes;
+  for (int id = 1; id <= sequence.scene().dynamicObjectCount(); ++id) {
+    const auto& name = sequence.scene().objectClass(static_cast<std::uint8_t>(id));
+    if (("," + classes + ",").find("," + name + ",") == std::string::npos)
+      classes += (classes.empty() ? "" : ",") + name;
+  }
+  if (!classes.empty()) text += fmt::format("\nDetector.classes: \"{}\"\n", classes);
   return text;
 }
 

@@ -371,7 +371,10 @@ SceneSnapshot Scene::at(double t, const Eigen::Vector3d& viewer) const {
   for (const auto& box : moving_boxes_) {
     const Eigen::Vector2f p = box.path.at(t);
     const Eigen::Vector3f lo(p.x() - box.size.x() / 2, p.y() - box.size.y() / 2, 0.0f);
-    snapshot.boxes.push_back({lo, lo + box.size, box.textures, next_id++});
+    // Designated: a positional 4th initializer would land in `lightmaps`, leaving the box
+    // unlabelled (object id 0) and lit from an unrelated lightmap.
+    snapshot.boxes.push_back(
+        {.lo = lo, .hi = lo + box.size, .textures = box.textures, .object_id = next_id++});
   }
   if (spotlight_) {
     const Eigen::Vector3f origin = options_.view_origin.cast<float>();

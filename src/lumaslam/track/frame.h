@@ -5,6 +5,8 @@
 #include <optional>
 #include <vector>
 
+#include <opencv2/core.hpp>
+
 #include "lumaslam/core/pose.h"
 #include "lumaslam/map/feature_set.h"
 #include "lumaslam/map/keyframe.h"
@@ -20,6 +22,7 @@ struct Frame {
   std::vector<bool> outliers;                          // per feature
   std::optional<SE3> T_c_w;
   std::shared_ptr<map::KeyFrame> reference;
+  std::vector<cv::Rect2f> dynamic_boxes;  // moving objects detected in this image (pixels)
 
   std::size_t size() const { return features ? features->size() : 0; }
   void clearMatches() {

@@ -33,11 +33,13 @@ Tracker::Tracker(std::shared_ptr<map::Map> map, KeyFrameSink& mapper, const Fram
       pyramid_(std::move(pyramid)),
       levels_(std::move(levels)),
       params_(params),
-      bounds_(camera.undistortedBounds()) {}
+      bounds_(camera.undistortedBounds()),
+      dynamic_memory_(params.dynamic_memory) {}
 
 TrackingOutcome Tracker::track(Frame frame) {
   std::lock_guard map_lock(map_->updateMutex());
   current_ = std::move(frame);
+  dynamic_memory_.beginFrame(current_.index, current_.dynamic_boxes);
   TrackingOutcome outcome;
   const TrackingState previous = state_;
 
@@ -164,6 +166,10 @@ void Tracker::updateLastFrame() {
   int count = 0;
   for (const auto& [z, i] : by_depth) {
     const auto& point = last_.points[i];
+    if (dynamic_memory_.likelyMissedDetection() &&
+        dynamic_memory_.nearRecentBox(last_.features->keypoints[i].pt)) {
+      continue;
+    }
     if (!point || point->observationCount() < 1) {
       const Eigen::Vector3d X_w = T_w_l * last_.unprojectCamera(i, camera_.intrinsics());
       auto temporary = std::make_shared<map::MapPoint>(0, X_w, nullptr);
@@ -214,7 +220,8 @@ int Tracker::optimizeCurrentPose() {
   problem.T_c_w = *current_.T_c_w;
   std::vector<std::size_t> feature_of;
   for (std::size_t i = 0; i < current_.size(); ++i) {
-    const auto& point = current_.points[i];
+    auto& point = current_.points[i];
+    if (point && dynamic_memory_.isDynamic(point->id())) point = nullptr;
     if (!point) continue;
     optimize::PoseObservation obs;
     obs.X_w = point->position();
@@ -434,6 +441,7 @@ bool Tracker::trackLocalMap() {
   updateLocalMap();
   searchLocalPoints();
   optimizeCurrentPose();
+  cullDynamicPoints();
   inliers_ = 0;
   for (std::size_t i = 0; i < current_.size(); ++i) {
     const auto& point = current_.points[i];
@@ -442,6 +450,24 @@ bool Tracker::trackLocalMap() {
     if (point->observationCount() > 0) ++inliers_;
   }
   return inliers_ >= params_.min_local_map_inliers;
+}
+
+// Missed detections: map points that keep failing the chi-square test near a recent box of
+// a moving object are on that object; they leave pose estimation and the map.
+void Tracker::cullDynamicPoints() {
+  for (std::size_t i = 0; i < current_.size(); ++i) {
+    const auto& point = current_.points[i];
+    if (!point || point->observationCount() < 1) continue;  // not in the map (VO points)
+    if (!dynamic_memory_.recordOutcome(point->id(), current_.features->keypoints[i].pt,
+                                       current_.outliers[i])) {
+      continue;
+    }
+    current_.outliers[i] = true;
+    map_->retireMapPoint(point);
+    // Nor may a new keyframe make a fresh point from this feature's depth.
+    current_.features->depth[i] = -1.0F;
+    current_.features->u_right[i] = -1.0F;
+  }
 }
 
 bool Tracker::needNewKeyFrame() const {
@@ -492,6 +518,11 @@ void Tracker::createNewKeyFrame() {
   int count = 0;
   for (const auto& [z, i] : by_depth) {
     const auto& point = current_.points[i];
+    // A missed detection must not put map points on a person who was just there.
+    if (dynamic_memory_.likelyMissedDetection() &&
+        dynamic_memory_.nearRecentBox(current_.features->keypoints[i].pt)) {
+      continue;
+    }
     if (!point || point->observationCount() < 1 || current_.outliers[i]) {
       current_.outliers[i] = false;
       newPointFromDepth(i, kf);

@@ -9,6 +9,7 @@
 
 #include "lumaslam/feature/scale_levels.h"
 #include "lumaslam/map/map.h"
+#include "lumaslam/track/dynamic_point_memory.h"
 #include "lumaslam/track/frame.h"
 #include "lumaslam/track/frame_camera.h"
 #include "lumaslam/track/keyframe_sink.h"
@@ -31,6 +32,7 @@ struct TrackerParams {
   int max_local_keyframes = 80;
   MonocularInitParams monocular{};
   int min_initial_monocular_points = 50;  // after the initial bundle adjustment (ORB-SLAM3)
+  DynamicMemoryParams dynamic_memory;  // points failing near recent people boxes
 };
 
 struct TrackingOutcome {
@@ -51,6 +53,8 @@ class Tracker {
   TrackingState state() const { return state_; }
   const TrajectoryRecorder& trajectory() const { return recorder_; }
   const Frame& lastFrame() const { return last_; }
+  // Map points declared dynamic so far (failed the chi-square test near recent boxes).
+  std::size_t dynamicPointCount() const { return dynamic_memory_.dynamicCount(); }
 
  private:
   bool initialize();
@@ -68,6 +72,7 @@ class Tracker {
   int searchLocalPoints();
   int optimizeCurrentPose();
   int discardOutliers();
+  void cullDynamicPoints();
   void updateLocalMap();
   std::shared_ptr<map::MapPoint> newPointFromDepth(std::size_t i,
                                                    const std::shared_ptr<map::KeyFrame>& kf);
@@ -92,6 +97,7 @@ class Tracker {
   std::vector<std::shared_ptr<map::MapPoint>> local_points_;
   std::vector<std::shared_ptr<map::MapPoint>> temporary_points_;  // last frame's VO points
   int inliers_ = 0;
+  DynamicPointMemory dynamic_memory_;
   TrajectoryRecorder recorder_;
   std::unique_ptr<MonocularInitializer> monocular_initializer_;
 };

@@ -1,0 +1,34 @@
+// Missed detections (issue 6's weak spot): with the detector blind on every other 5-frame
+// burst, tracking's memory of recent boxes (Detector.memory_frames) keeps the people out of
+// pose estimation and out of the map.
+#include <gtest/gtest.h>
+
+#include "test_paths.h"
+#include "test_system_dynamic.h"
+
+namespace {
+
+using namespace lumaslam;
+
+TEST(SystemDynamicMemory, RecentBoxesCoverForMissedDetections) {
+  const synth::SequenceRenderer sequence(synth::findPreset("walking-xyz-rgbd"), 100, 1);
+  test::TempDir dir("system_dynamic_memory");
+  test::GroundTruthBoxes bursts;  // frames 0-4, 10-14, ... detected; 5-9, 15-19, ... missed
+  for (int i = 0; i < sequence.frameCount(); ++i) {
+    if ((i / 5) % 2 == 0) bursts.add(sequence.render(i));
+  }
+  const auto boxes = dir.path() / "bursts.txt";
+  bursts.write(boxes);
+  SystemOptions options;
+  options.detector = "boxes:" + boxes.string();
+
+  const auto with_memory = test::runSynthetic(sequence, options);
+  const auto without_memory =
+      test::runSynthetic(sequence, options, {}, "Detector.memory_frames: 0\n");
+  EXPECT_EQ(with_memory.tracked, with_memory.frames);
+  EXPECT_LE(with_memory.ate(), 0.01);
+  EXPECT_LE(with_memory.ate(), without_memory.ate() / 2.0)
+      << "without memory " << without_memory.ate();
+}
+
+}  // namespace
