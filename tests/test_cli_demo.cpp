@@ -1,0 +1,45 @@
+// `lumaslam demo` (the README's main job): synthetic walking sequence, baseline run and
+// lumaslam run (enhancement + features on moving objects dropped), both evaluated.
+#include <gtest/gtest.h>
+
+#include <fstream>
+
+#include <nlohmann/json.hpp>
+
+#include "test_cli.h"
+
+namespace {
+
+using lumaslam::test::runCli;
+using lumaslam::test::TempDir;
+
+nlohmann::json summaryOf(const std::filesystem::path& run) {
+  std::ifstream in(run / "summary.json");
+  return nlohmann::json::parse(in);
+}
+
+TEST(CliDemo, RunsBaselineAndLumaslamOnAWalkingSequence) {
+  TempDir dir("cli_demo");
+  const auto demo = runCli("demo --out " + dir.path().string() + " --frames 60");
+  ASSERT_EQ(demo.exit_code, 0) << demo.output;
+  EXPECT_TRUE(std::filesystem::exists(dir.path() / "data" / "detections.txt"));
+
+  const auto baseline = summaryOf(dir.path() / "baseline");
+  const auto lumaslam = summaryOf(dir.path() / "lumaslam");
+  EXPECT_EQ(baseline["detector"]["name"].get<std::string>(), "none");
+  EXPECT_NE(lumaslam["detector"]["name"].get<std::string>(), "none");
+  EXPECT_GT(lumaslam["detector"]["dropped_features_per_frame"].get<double>(), 10.0);
+  EXPECT_EQ(lumaslam["tracked"].get<int>(), 60);
+  ASSERT_TRUE(lumaslam.contains("evaluation")) << demo.output;
+  EXPECT_LT(lumaslam["evaluation"]["ate"]["rmse"].get<double>(), 0.02);
+  EXPECT_NE(demo.output.find("baseline (no enhance, no removal)"), std::string::npos);
+}
+
+TEST(CliDemo, UnknownPresetIsAClearError) {
+  TempDir dir("cli_demo_bad");
+  const auto demo = runCli("demo --out " + dir.path().string() + " --preset no-such-preset");
+  EXPECT_NE(demo.exit_code, 0);
+  EXPECT_NE(demo.output.find("no-such-preset"), std::string::npos) << demo.output;
+}
+
+}  // namespace
