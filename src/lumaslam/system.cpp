@@ -6,6 +6,7 @@
 #include <spdlog/spdlog.h>
 #include <opencv2/imgproc.hpp>
 
+#include "lumaslam/bow_relocalizer.h"
 #include "lumaslam/camera/stereo_rectifier.h"
 #include "lumaslam/core/error.h"
 #include "lumaslam/enhance/enhancer.h"
@@ -123,6 +124,10 @@ System::System(const io::Settings& settings, const SystemOptions& options)
   }
   tracker_ = std::make_unique<track::Tracker>(map_, *mapper_, camera, frame_builder_->pyramid(),
                                               frame_builder_->extractor().levels(), tracker_params);
+  if (places_) {
+    tracker_->setRelocalizer(
+        std::make_shared<BowRelocalizer>(places_, map_, camera, frame_builder_->pyramid()));
+  }
 }
 
 System::~System() {

@@ -11,6 +11,7 @@
 #include "lumaslam/map/map.h"
 #include "lumaslam/track/frame.h"
 #include "lumaslam/track/frame_camera.h"
+#include "lumaslam/track/frame_relocalizer.h"
 #include "lumaslam/track/keyframe_sink.h"
 #include "lumaslam/track/trajectory_recorder.h"
 
@@ -35,6 +36,7 @@ struct TrackingOutcome {
   std::optional<SE3> T_w_c;  // set when tracked
   int inliers = 0;
   bool new_keyframe = false;
+  bool relocalized = false;  // recovered from Lost by the relocalizer (not the last-pose search)
 };
 
 class Tracker {
@@ -45,6 +47,11 @@ class Tracker {
 
   TrackingOutcome track(Frame frame);
 
+  // While lost, tried after the search around the last pose; null = relocalization off.
+  void setRelocalizer(std::shared_ptr<const FrameRelocalizer> relocalizer) {
+    relocalizer_ = std::move(relocalizer);
+  }
+
   TrackingState state() const { return state_; }
   const TrajectoryRecorder& trajectory() const { return recorder_; }
   const Frame& lastFrame() const { return last_; }
@@ -54,6 +61,7 @@ class Tracker {
   void updateLastFrame();
   bool trackWithMotionModel();
   bool trackFromPose(const SE3& T_c_w_prior, float radius);
+  bool relocalize();
   bool trackLocalMap();
   bool needNewKeyFrame() const;
   void createNewKeyFrame();
@@ -88,6 +96,7 @@ class Tracker {
   std::vector<std::shared_ptr<map::MapPoint>> temporary_points_;  // last frame's VO points
   int inliers_ = 0;
   TrajectoryRecorder recorder_;
+  std::shared_ptr<const FrameRelocalizer> relocalizer_;
 };
 
 }  // namespace lumaslam::track
