@@ -91,3 +91,32 @@ TEST(CliRun, MissingSettingsOrDatasetIsAClearError) {
 }
 
 }  // namespace
+
+// --vocabulary: a vocabulary trained with `lumaslam vocab train` turns relocalization on; a
+// missing file is an error naming it, before any frame is tracked.
+TEST(CliRun, VocabularyTurnsRelocalizationOnAndAMissingOneIsAnError) {
+  TempDir dir("cli_run_vocab");
+  const auto data = dir.path() / "data";
+  const auto synth = runCli("synth " + data.string() + " --preset xyz-rgbd --frames 20 --seed 5");
+  ASSERT_EQ(synth.exit_code, 0) << synth.output;
+  const auto vocab = dir.path() / "vocab.bin";
+  const auto train = runCli("vocab train --k 6 --levels 3 --features 500 --out " + vocab.string() +
+                            " tum:" + data.string());
+  ASSERT_EQ(train.exit_code, 0) << train.output;
+
+  const std::string run = "run --dataset tum:" + data.string() + " --enhance off --sequential";
+  const auto with =
+      runCli(run + " --vocabulary " + vocab.string() + " --out " + (dir.path() / "with").string());
+  ASSERT_EQ(with.exit_code, 0) << with.output;
+  EXPECT_NE(with.output.find("relocalization is on"), std::string::npos) << with.output;
+  const auto without = runCli(run + " --out " + (dir.path() / "without").string());
+  ASSERT_EQ(without.exit_code, 0) << without.output;
+  EXPECT_NE(without.output.find("relocalization is off"), std::string::npos) << without.output;
+
+  const auto missing = dir.path() / "no_such_vocab.bin";
+  const auto bad =
+      runCli(run + " --vocabulary " + missing.string() + " --out " + (dir.path() / "bad").string());
+  EXPECT_NE(bad.exit_code, 0);
+  EXPECT_NE(bad.output.find(missing.string()), std::string::npos) << bad.output;
+  EXPECT_FALSE(std::filesystem::exists(dir.path() / "bad" / "summary.json"));
+}
