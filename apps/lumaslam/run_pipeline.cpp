@@ -63,6 +63,7 @@ int runPipeline(const RunOptions& options) {
   const bool progress = isatty(STDERR_FILENO) != 0;
   std::vector<double> totals;
   std::size_t tracked = 0;
+  std::size_t relocalized = 0;
   std::size_t frames = 0;
   while (auto frame = reader->next()) {
     const auto result = system.track(toSensorFrame(*frame));
@@ -75,6 +76,7 @@ int runPipeline(const RunOptions& options) {
     totals.push_back(t.total);
     ++frames;
     if (result.outcome.state == track::TrackingState::Ok) ++tracked;
+    if (result.outcome.relocalized) ++relocalized;
     if (progress) {
       std::fprintf(stderr, "\rframe %zu/%zu  %s  %.1f ms   ", frames, reader->size(),
                    track::toString(result.outcome.state), t.total);
@@ -95,6 +97,7 @@ int runPipeline(const RunOptions& options) {
                             {"frames", frames},
                             {"tracked", tracked},
                             {"lost", frames - tracked},
+                            {"relocalized", relocalized},
                             {"keyframes", system.keyFrameCount()},
                             {"map_points", system.mapPointCount()},
                             {"ms_per_frame", {{"mean", mean}, {"median", median(totals)}}}};
