@@ -7,6 +7,7 @@
 #include <vector>
 
 #include <nlohmann/json.hpp>
+#include <opencv2/imgcodecs.hpp>
 
 #include "lumaslam/io/trajectory_io.h"
 #include "test_cli.h"
@@ -91,3 +92,51 @@ TEST(CliRun, MissingSettingsOrDatasetIsAClearError) {
 }
 
 }  // namespace
+
+// --vocabulary: a vocabulary trained with `lumaslam vocab train` turns relocalization on, and
+// a dataset whose images go black for 20 frames is relocalized in the same run (summary and
+// trajectory); without it the log says relocalization is off; a missing file is an error
+// naming it, before any frame is tracked.
+TEST(CliRun, VocabularyRelocalizesAfterABlackoutAndAMissingOneIsAnError) {
+  TempDir dir("cli_run_vocab");
+  const auto data = dir.path() / "data";
+  const auto synth = runCli("synth " + data.string() + " --preset rpy-rgbd --frames 90 --seed 3");
+  ASSERT_EQ(synth.exit_code, 0) << synth.output;
+  const auto vocab = dir.path() / "vocab.bin";
+  const auto train = runCli("vocab train --k 8 --levels 4 --stride 10 --out " + vocab.string() +
+                            " tum:" + data.string());
+  ASSERT_EQ(train.exit_code, 0) << train.output;
+  // Frames 50-69 black (the rgb images in file order).
+  std::vector<std::filesystem::path> images;
+  for (const auto& entry : std::filesystem::directory_iterator(data / "rgb")) {
+    images.push_back(entry.path());
+  }
+  std::sort(images.begin(), images.end());
+  ASSERT_EQ(images.size(), 90U);
+  for (std::size_t i = 50; i < 70; ++i) {
+    const cv::Mat image = cv::imread(images[i].string(), cv::IMREAD_UNCHANGED);
+    ASSERT_TRUE(cv::imwrite(images[i].string(), cv::Mat::zeros(image.size(), image.type())));
+  }
+
+  const std::string run = "run --dataset tum:" + data.string() + " --sequential";
+  const auto with =
+      runCli(run + " --vocabulary " + vocab.string() + " --out " + (dir.path() / "with").string());
+  ASSERT_EQ(with.exit_code, 0) << with.output;
+  EXPECT_NE(with.output.find("relocalization is on"), std::string::npos) << with.output;
+  std::ifstream summary_file(dir.path() / "with" / "summary.json");
+  const auto summary = nlohmann::json::parse(summary_file);
+  EXPECT_EQ(summary["lost"].get<int>(), 20) << with.output;
+  EXPECT_GE(summary["relocalized"].get<int>(), 1) << with.output;
+  EXPECT_EQ(lumaslam::io::readTrajectory(dir.path() / "with" / "trajectory.txt").size(), 70U);
+
+  const auto without = runCli(run + " --out " + (dir.path() / "without").string());
+  ASSERT_EQ(without.exit_code, 0) << without.output;
+  EXPECT_NE(without.output.find("relocalization is off"), std::string::npos) << without.output;
+
+  const auto missing = dir.path() / "no_such_vocab.bin";
+  const auto bad =
+      runCli(run + " --vocabulary " + missing.string() + " --out " + (dir.path() / "bad").string());
+  EXPECT_NE(bad.exit_code, 0);
+  EXPECT_NE(bad.output.find(missing.string()), std::string::npos) << bad.output;
+  EXPECT_FALSE(std::filesystem::exists(dir.path() / "bad" / "summary.json"));
+}

@@ -55,6 +55,7 @@ int runPipeline(const RunOptions& options) {
   system_options.enhance_preset = options.enhance_preset;
   system_options.detector = options.detector;
   if (options.sequential) system_options.sequential = true;
+  system_options.vocabulary = options.vocabulary;
   System system(settings, system_options);
 
   std::ofstream timing(options.out / "timing.csv");
@@ -63,6 +64,7 @@ int runPipeline(const RunOptions& options) {
   const bool progress = isatty(STDERR_FILENO) != 0;
   std::vector<double> totals;
   std::size_t tracked = 0;
+  std::size_t relocalized = 0;
   std::size_t frames = 0;
   double dropped_sum = 0.0;
   double wait_sum = 0.0;
@@ -81,6 +83,7 @@ int runPipeline(const RunOptions& options) {
     totals.push_back(t.total);
     ++frames;
     if (result.outcome.state == track::TrackingState::Ok) ++tracked;
+    if (result.outcome.relocalized) ++relocalized;
     if (progress) {
       std::fprintf(stderr, "\rframe %zu/%zu  %s  %.1f ms   ", frames, reader->size(),
                    track::toString(result.outcome.state), t.total);
@@ -101,6 +104,7 @@ int runPipeline(const RunOptions& options) {
                             {"frames", frames},
                             {"tracked", tracked},
                             {"lost", frames - tracked},
+                            {"relocalized", relocalized},
                             {"keyframes", system.keyFrameCount()},
                             {"map_points", system.mapPointCount()},
                             {"ms_per_frame", {{"mean", mean}, {"median", median(totals)}}}};

@@ -7,6 +7,7 @@
 #include <spdlog/spdlog.h>
 #include <opencv2/imgproc.hpp>
 
+#include "lumaslam/bow_relocalizer.h"
 #include "lumaslam/camera/stereo_rectifier.h"
 #include "lumaslam/core/error.h"
 #include "lumaslam/detect/detection_worker.h"
@@ -15,6 +16,7 @@
 #include "lumaslam/detect/dynamic_mask.h"
 #include "lumaslam/enhance/enhancer.h"
 #include "lumaslam/io/dataset_reader.h"
+#include "lumaslam/loop/place_recognition.h"
 #include "lumaslam/mapping/local_mapper.h"
 #include "lumaslam/track/feature_subset.h"
 #include "lumaslam/track/frame_builder.h"
@@ -104,6 +106,17 @@ System::System(const io::Settings& settings, const SystemOptions& options)
     detector_params_ = std::make_unique<detect::DetectorParams>(std::move(*params));
   }
 
+  const auto vocabulary = options.vocabulary.value_or(settings_.loop.vocabulary);
+  if (vocabulary.empty()) {
+    spdlog::info("no vocabulary (Loop.vocabulary / --vocabulary): relocalization is off");
+  } else {
+    places_ = loop::PlaceRecognition::fromFile(vocabulary);
+    spdlog::info("{}: vocabulary with {} words (k {}, L {}): relocalization is on",
+                 vocabulary.string(), places_->vocabulary().wordCount(),
+                 places_->vocabulary().branching(), places_->vocabulary().depth());
+    map_->setKeyFrameIndex(places_);
+  }
+
   const auto camera = frameCameraFrom(settings_, rectifier_.get());
   frame_builder_ = std::make_unique<track::FrameBuilder>(camera, orbSettingsFrom(settings_));
   mapping::LocalMapperParams mapper_params;
@@ -125,6 +138,10 @@ System::System(const io::Settings& settings, const SystemOptions& options)
   }
   tracker_ = std::make_unique<track::Tracker>(map_, *mapper_, camera, frame_builder_->pyramid(),
                                               frame_builder_->extractor().levels(), tracker_params);
+  if (places_) {
+    tracker_->setRelocalizer(
+        std::make_shared<BowRelocalizer>(places_, map_, camera, frame_builder_->pyramid()));
+  }
 }
 
 System::~System() {

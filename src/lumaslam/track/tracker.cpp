@@ -52,11 +52,14 @@ TrackingOutcome Tracker::track(Frame frame) {
     if (state_ == TrackingState::Ok) {
       ok = (velocity_ && trackWithMotionModel()) ||
            (last_.T_c_w && trackFromPose(*last_.T_c_w, params_.motion_search_radius * 2.0F));
-    } else if (last_.T_c_w) {
-      // Lost: look for the map around the last pose we had (short blackouts, fast motion).
-      ok = trackFromPose(*last_.T_c_w, params_.lost_search_radius);
+    } else {
+      // Lost: look for the map around the last pose we had (short blackouts, fast motion),
+      // then anywhere in the map by place recognition (ORB-SLAM's Relocalization).
+      ok = last_.T_c_w && trackFromPose(*last_.T_c_w, params_.lost_search_radius);
+      if (!ok) outcome.relocalized = ok = relocalize();
     }
     if (ok) ok = trackLocalMap();
+    outcome.relocalized = outcome.relocalized && ok;
     if (state_ != TrackingState::NotInitialized)
       state_ = ok ? TrackingState::Ok : TrackingState::Lost;
     if (ok && needNewKeyFrame()) {
@@ -332,6 +335,18 @@ bool Tracker::trackFromPose(const SE3& T_c_w_prior, float radius) {
   }
   if (optimizeCurrentPose() == 0) return false;
   return discardOutliers() >= 10;
+}
+
+bool Tracker::relocalize() {
+  if (!relocalizer_ || current_.size() == 0) return false;
+  auto found = relocalizer_->relocalize(current_);
+  if (!found) return false;
+  current_.T_c_w = found->T_c_w;
+  current_.clearMatches();
+  current_.points = std::move(found->points);
+  current_.points.resize(current_.size());
+  spdlog::info("frame {}: relocalized with {} inliers", current_.index, found->inliers);
+  return true;
 }
 
 void Tracker::updateLocalMap() {

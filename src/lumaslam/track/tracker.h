@@ -12,6 +12,7 @@
 #include "lumaslam/track/dynamic_point_memory.h"
 #include "lumaslam/track/frame.h"
 #include "lumaslam/track/frame_camera.h"
+#include "lumaslam/track/frame_relocalizer.h"
 #include "lumaslam/track/keyframe_sink.h"
 #include "lumaslam/track/monocular_initializer.h"
 #include "lumaslam/track/trajectory_recorder.h"
@@ -32,7 +33,7 @@ struct TrackerParams {
   int max_local_keyframes = 80;
   MonocularInitParams monocular{};
   int min_initial_monocular_points = 50;  // after the initial bundle adjustment (ORB-SLAM3)
-  DynamicMemoryParams dynamic_memory;  // points failing near recent people boxes
+  DynamicMemoryParams dynamic_memory;     // points failing near recent people boxes
 };
 
 struct TrackingOutcome {
@@ -40,6 +41,7 @@ struct TrackingOutcome {
   std::optional<SE3> T_w_c;  // set when tracked
   int inliers = 0;
   bool new_keyframe = false;
+  bool relocalized = false;  // recovered from Lost by the relocalizer (not the last-pose search)
 };
 
 class Tracker {
@@ -49,6 +51,11 @@ class Tracker {
           const TrackerParams& params);
 
   TrackingOutcome track(Frame frame);
+
+  // While lost, tried after the search around the last pose; null = relocalization off.
+  void setRelocalizer(std::shared_ptr<const FrameRelocalizer> relocalizer) {
+    relocalizer_ = std::move(relocalizer);
+  }
 
   TrackingState state() const { return state_; }
   const TrajectoryRecorder& trajectory() const { return recorder_; }
@@ -63,6 +70,7 @@ class Tracker {
   void updateLastFrame();
   bool trackWithMotionModel();
   bool trackFromPose(const SE3& T_c_w_prior, float radius);
+  bool relocalize();
   bool trackLocalMap();
   bool needNewKeyFrame() const;
   void createNewKeyFrame();
@@ -100,6 +108,7 @@ class Tracker {
   DynamicPointMemory dynamic_memory_;
   TrajectoryRecorder recorder_;
   std::unique_ptr<MonocularInitializer> monocular_initializer_;
+  std::shared_ptr<const FrameRelocalizer> relocalizer_;
 };
 
 }  // namespace lumaslam::track

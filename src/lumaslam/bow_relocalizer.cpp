@@ -1,0 +1,33 @@
+#include "lumaslam/bow_relocalizer.h"
+
+namespace lumaslam {
+namespace {
+
+loop::RelocalizerParams relocalizerParams() {
+  loop::RelocalizerParams params;
+  params.direct_index_levels_up = loop::PlaceRecognition::kDirectIndexLevelsUp;
+  return params;
+}
+
+}  // namespace
+
+BowRelocalizer::BowRelocalizer(std::shared_ptr<const loop::PlaceRecognition> places,
+                               std::shared_ptr<const map::Map> map,
+                               const track::FrameCamera& camera,
+                               std::shared_ptr<const map::ScalePyramid> pyramid)
+    : places_(std::move(places)),
+      map_(std::move(map)),
+      pyramid_(std::move(pyramid)),
+      intrinsics_(camera.intrinsics()),
+      bounds_(camera.undistortedBounds()),
+      relocalizer_(places_->vocabulary(), places_->database(), *map_, relocalizerParams()) {}
+
+std::optional<track::Relocalization> BowRelocalizer::relocalize(const track::Frame& frame) const {
+  if (!frame.features || !frame.features->grid) return std::nullopt;
+  const auto result =
+      relocalizer_.relocalize({frame.features.get(), intrinsics_, pyramid_.get(), bounds_});
+  if (!result.success) return std::nullopt;
+  return track::Relocalization{result.T_c_w, result.points, result.inliers};
+}
+
+}  // namespace lumaslam

@@ -1,0 +1,31 @@
+#pragma once
+// The tracker's FrameRelocalizer backed by loop::Relocalizer (BoW candidates from the
+// keyframe database, SearchByBoW, EPnP + RANSAC, pose-only refinement): how the System
+// plugs place recognition into tracking without track/ depending on loop/.
+#include <memory>
+
+#include "lumaslam/loop/place_recognition.h"
+#include "lumaslam/loop/relocalizer.h"
+#include "lumaslam/track/frame_camera.h"
+#include "lumaslam/track/frame_relocalizer.h"
+
+namespace lumaslam {
+
+class BowRelocalizer : public track::FrameRelocalizer {
+ public:
+  BowRelocalizer(std::shared_ptr<const loop::PlaceRecognition> places,
+                 std::shared_ptr<const map::Map> map, const track::FrameCamera& camera,
+                 std::shared_ptr<const map::ScalePyramid> pyramid);
+
+  std::optional<track::Relocalization> relocalize(const track::Frame& frame) const override;
+
+ private:
+  std::shared_ptr<const loop::PlaceRecognition> places_;
+  std::shared_ptr<const map::Map> map_;
+  std::shared_ptr<const map::ScalePyramid> pyramid_;
+  map::PinholeIntrinsics intrinsics_;
+  cv::Rect2f bounds_;
+  loop::Relocalizer relocalizer_;
+};
+
+}  // namespace lumaslam

@@ -1,0 +1,232 @@
+// Issue 7 acceptance, relocalization in the running System: a synthetic RGB-D sequence whose
+// images go black (20 frames) or over-exposed (10 frames x5) in the middle. Frames without
+// light are Lost with no pose; when the light returns the camera is far from where it was
+// lost, the tracker relocalizes against the same map (BoW + PnP) within 5 frames, and the
+// poses after recovery are in the first map's world. A vocabulary trained in the test on
+// frames of the generator is given through SystemOptions::vocabulary (a file, as users do).
+// Enhancement `best` is on, as users run it: its online statistics see the dark frames too.
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <optional>
+
+#include <gtest/gtest.h>
+#include <opencv2/imgproc.hpp>
+
+#include "lumaslam/core/error.h"
+#include "lumaslam/feature/orb_extractor.h"
+#include "lumaslam/loop/vocabulary_io.h"
+#include "lumaslam/loop/vocabulary_training.h"
+#include "test_paths.h"
+#include "test_system_run.h"
+
+namespace lumaslam {
+namespace {
+
+constexpr int kFrames = 120;
+constexpr int kFirstDark = 50;
+constexpr std::uint64_t kSeed = 3;
+constexpr int kRecoveryWindow = 5;  // frames after the light returns (acceptance)
+
+const synth::SequenceRenderer& sequence() {
+  static const synth::SequenceRenderer instance(synth::findPreset("rpy-rgbd"), kFrames, kSeed);
+  return instance;
+}
+
+// A small vocabulary (k 8, L 4) trained on every 10th frame of the sequence, saved to a file.
+const std::filesystem::path& vocabularyFile() {
+  static const test::TempDir dir("system_relocalization");
+  static const std::filesystem::path file = [] {
+    const feature::OrbExtractor extractor{feature::OrbSettings{}};
+    std::vector<cv::Mat> descriptors;
+    for (int i = 0; i < kFrames; i += 10) {
+      cv::Mat gray;
+      cv::cvtColor(sequence().render(i).cam0.image, gray, cv::COLOR_BGR2GRAY);
+      descriptors.push_back(extractor.extract(gray).descriptors);
+    }
+    loop::TrainingParams params;
+    params.branching = 8;
+    params.depth = 4;
+    const auto path = dir.path() / "vocab.bin";
+    loop::saveVocabulary(loop::trainVocabulary(descriptors, params), path);
+    return path;
+  }();
+  return file;
+}
+
+using Disturbance = std::function<cv::Mat(const cv::Mat&)>;
+
+struct DisturbedRun {
+  std::vector<track::TrackingOutcome> outcomes;  // per frame
+  std::vector<double> tracking_ms;               // per frame (printed, never asserted)
+  Trajectory trajectory;                         // System::frameTrajectory()
+  Trajectory keyframes;
+  std::size_t keyframes_before = 0;  // when the light went
+};
+
+// Runs the sequence with images [kFirstDark, kFirstDark + dark_frames) disturbed.
+DisturbedRun runDisturbed(int dark_frames, const Disturbance& disturb, bool with_vocabulary,
+                          bool sequential = true) {
+  SystemOptions options;
+  options.enhance_preset = "best";
+  options.sequential = sequential;
+  if (with_vocabulary) options.vocabulary = vocabularyFile();
+  System system(test::presetSettings(sequence()), options);
+  DisturbedRun run;
+  for (int i = 0; i < kFrames; ++i) {
+    auto input = test::sensorFrame(sequence().render(i));
+    if (i == kFirstDark) run.keyframes_before = system.keyFrameCount();
+    if (i >= kFirstDark && i < kFirstDark + dark_frames) input.image = disturb(input.image);
+    const auto result = system.track(input);
+    run.outcomes.push_back(result.outcome);
+    run.tracking_ms.push_back(result.timing.tracking);
+  }
+  system.shutdown();
+  run.trajectory = system.frameTrajectory();
+  run.keyframes = system.keyFrameTrajectory();
+  return run;
+}
+
+cv::Mat black(const cv::Mat& image) {
+  return cv::Mat::zeros(image.size(), image.type());
+}
+
+cv::Mat overExposed(const cv::Mat& image) {
+  cv::Mat bright;
+  image.convertTo(bright, -1, 5.0);  // saturates
+  return bright;
+}
+
+std::optional<int> firstTrackedFrom(const DisturbedRun& run, int from) {
+  for (int i = from; i < kFrames; ++i) {
+    if (run.outcomes[static_cast<std::size_t>(i)].state == track::TrackingState::Ok) return i;
+  }
+  return std::nullopt;
+}
+
+bool recoveredByRelocalizer(const DisturbedRun& run, int light_back) {
+  const auto recovered = firstTrackedFrom(run, light_back);
+  return recovered && run.outcomes[static_cast<std::size_t>(*recovered)].relocalized;
+}
+
+// Position errors (metres) of the tracked frames from `from` on, in the world of the map
+// started before the disturbance: no alignment, the ground truth is expressed relative to
+// the first keyframe's frame as the System's world is.
+std::vector<double> positionErrorsFrom(const DisturbedRun& run, int from) {
+  const double t0 = run.keyframes.front().timestamp;
+  int first_keyframe = 0;
+  while (sequence().render(first_keyframe).timestamp() < t0 - 1e-6) ++first_keyframe;
+  const SE3 T_w0_w = sequence().render(first_keyframe).cam0.T_w_c.inverse();
+  const double t_from = sequence().render(from).timestamp() - 1e-6;
+  std::vector<double> errors;
+  for (const auto& pose : run.trajectory) {
+    if (pose.timestamp < t_from) continue;
+    const SE3 truth = T_w0_w * sequence().poseAt(pose.timestamp);
+    errors.push_back((pose.T_w_c.translation() - truth.translation()).norm());
+  }
+  return errors;
+}
+
+double median(std::vector<double> values) {
+  std::nth_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2),
+                   values.end());
+  return values[values.size() / 2];
+}
+
+double rms(const std::vector<double>& values) {
+  double sum = 0.0;
+  for (const double v : values) sum += v * v;
+  return values.empty() ? 0.0 : std::sqrt(sum / static_cast<double>(values.size()));
+}
+
+// Checks the acceptance after `dark_frames` disturbed frames; returns how many were lost.
+int expectRecoveredInTheSameMap(const DisturbedRun& run, int dark_frames, const char* what) {
+  const int light_back = kFirstDark + dark_frames;
+  // Disturbed frames are Lost with no pose in the trajectory, or tracked (checked below with
+  // the rest).
+  int lost = 0;
+  for (int i = kFirstDark; i < light_back; ++i) {
+    const auto& outcome = run.outcomes[static_cast<std::size_t>(i)];
+    if (outcome.state != track::TrackingState::Lost) continue;
+    ++lost;
+    EXPECT_FALSE(outcome.T_w_c) << what << ": frame " << i;
+    const double t = sequence().render(i).timestamp();
+    EXPECT_TRUE(std::none_of(run.trajectory.begin(), run.trajectory.end(),
+                             [&](const auto& p) { return std::abs(p.timestamp - t) < 1e-6; }))
+        << what << ": lost frame " << i << " has a pose in the trajectory";
+  }
+  const auto recovered = firstTrackedFrom(run, light_back);
+  if (!recovered) {
+    ADD_FAILURE() << what << ": never recovered";
+    return lost;
+  }
+  EXPECT_LT(*recovered, light_back + kRecoveryWindow) << what;
+  // Same map: the first keyframe is still the origin, keyframes were only added to it, and
+  // every frame after the recovery is tracked in it.
+  EXPECT_GE(run.keyframes.size(), run.keyframes_before) << what;
+  EXPECT_NEAR(run.keyframes.front().timestamp, sequence().render(0).timestamp(), 0.5) << what;
+  for (int i = *recovered; i < kFrames; ++i) {
+    EXPECT_EQ(run.outcomes[static_cast<std::size_t>(i)].state, track::TrackingState::Ok)
+        << what << ": frame " << i;
+  }
+  const auto errors = positionErrorsFrom(run, kFirstDark);
+  EXPECT_GT(errors.size(), 40U) << what;
+  if (errors.empty()) return lost;
+  std::printf(
+      "%s: lost %d of %d frames, tracking at frame %d (%d after the light)%s in %.1f ms (median "
+      "frame %.1f ms), %zu frames tracked from the disturbance on, position RMSE %.1f mm, max "
+      "%.1f mm (no alignment)\n",
+      what, lost, dark_frames, *recovered, *recovered - light_back,
+      run.outcomes[static_cast<std::size_t>(*recovered)].relocalized ? " by relocalization" : "",
+      run.tracking_ms[static_cast<std::size_t>(*recovered)], median(run.tracking_ms), errors.size(),
+      1000.0 * rms(errors), 1000.0 * *std::max_element(errors.begin(), errors.end()));
+  EXPECT_LT(rms(errors), 0.02) << what;
+  return lost;
+}
+
+TEST(SystemRelocalization, RecoversAfterTwentyBlackFrames) {
+  const auto run = runDisturbed(20, black, true);
+  EXPECT_EQ(expectRecoveredInTheSameMap(run, 20, "blackout"), 20);
+  // The camera turned too far for the last-pose search (see the test without vocabulary):
+  // the relocalizer is what found the map again.
+  EXPECT_TRUE(recoveredByRelocalizer(run, kFirstDark + 20));
+}
+
+// Pixel values x5 saturate most of the image: tracking is lost, and the relocalizer finds
+// the map again when the exposure returns. Local mapping in its own thread, as users run it:
+// keyframes enter the database from the tracker while mapping culls them from its thread.
+TEST(SystemRelocalization, RecoversAfterTenOverExposedFramesThreaded) {
+  const auto run = runDisturbed(10, overExposed, true, /*sequential=*/false);
+  EXPECT_GT(expectRecoveredInTheSameMap(run, 10, "over-exposure x5"), 0);
+  EXPECT_TRUE(recoveredByRelocalizer(run, kFirstDark + 10));
+}
+
+// Without a vocabulary the tracker only searches around the last pose, and the camera has
+// turned too far during the blackout for that: it stays lost past the recovery window, so
+// the recovery above is the relocalizer's.
+TEST(SystemRelocalization, WithoutVocabularyTheBlackoutIsNotRecoveredInTime) {
+  const auto run = runDisturbed(20, black, false);
+  const auto recovered = firstTrackedFrom(run, kFirstDark + 20);
+  std::printf("without vocabulary: %s\n",
+              recovered ? fmt::format("tracking again at frame {}", *recovered).c_str()
+                        : "lost to the end");
+  if (recovered) {
+    EXPECT_GE(*recovered, kFirstDark + 20 + kRecoveryWindow);
+  }
+  for (const auto& outcome : run.outcomes) EXPECT_FALSE(outcome.relocalized);
+}
+
+TEST(SystemRelocalization, MissingVocabularyIsAnErrorNamingTheFile) {
+  SystemOptions options;
+  options.enhance_preset = "off";
+  options.vocabulary = "/nonexistent/vocab.bin";
+  try {
+    System system(test::presetSettings(sequence()), options);
+    FAIL() << "no error for a missing vocabulary";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("/nonexistent/vocab.bin"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace lumaslam
