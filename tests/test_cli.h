@@ -4,7 +4,11 @@
 
 #include <array>
 #include <cstdio>
+#include <filesystem>
+#include <fstream>
 #include <string>
+
+#include <nlohmann/json.hpp>
 
 #include "test_paths.h"
 
@@ -25,6 +29,13 @@ inline CliResult runCli(const std::string& arguments) {
   const int status = pclose(pipe);
   result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   return result;
+}
+
+// The summary.json that `lumaslam run` writes into `out` (empty json when there is none).
+inline nlohmann::json readRunSummary(const std::filesystem::path& out) {
+  std::ifstream file(out / "summary.json");
+  if (!file) return {};
+  return nlohmann::json::parse(file);
 }
 
 }  // namespace lumaslam::test

@@ -10,13 +10,9 @@
 
 namespace {
 
+using lumaslam::test::readRunSummary;
 using lumaslam::test::runCli;
 using lumaslam::test::TempDir;
-
-nlohmann::json summaryOf(const std::filesystem::path& run) {
-  std::ifstream in(run / "summary.json");
-  return nlohmann::json::parse(in);
-}
 
 TEST(CliDemo, RunsBaselineAndLumaslamOnAWalkingSequence) {
   TempDir dir("cli_demo");
@@ -24,14 +20,14 @@ TEST(CliDemo, RunsBaselineAndLumaslamOnAWalkingSequence) {
   ASSERT_EQ(demo.exit_code, 0) << demo.output;
   EXPECT_TRUE(std::filesystem::exists(dir.path() / "data" / "detections.txt"));
 
-  const auto baseline = summaryOf(dir.path() / "baseline");
-  const auto lumaslam = summaryOf(dir.path() / "lumaslam");
+  const auto baseline = readRunSummary(dir.path() / "baseline");
+  const auto full = readRunSummary(dir.path() / "lumaslam");
   EXPECT_EQ(baseline["detector"]["name"].get<std::string>(), "none");
-  EXPECT_NE(lumaslam["detector"]["name"].get<std::string>(), "none");
-  EXPECT_GT(lumaslam["detector"]["dropped_features_per_frame"].get<double>(), 10.0);
-  EXPECT_EQ(lumaslam["tracked"].get<int>(), 60);
-  ASSERT_TRUE(lumaslam.contains("evaluation")) << demo.output;
-  EXPECT_LT(lumaslam["evaluation"]["ate"]["rmse"].get<double>(), 0.02);
+  EXPECT_NE(full["detector"]["name"].get<std::string>(), "none");
+  EXPECT_GT(full["detector"]["dropped_features_per_frame"].get<double>(), 10.0);
+  EXPECT_EQ(full["tracked"].get<int>(), 60);
+  ASSERT_TRUE(full.contains("evaluation")) << demo.output;
+  EXPECT_LT(full["evaluation"]["ate"]["rmse"].get<double>(), 0.02);
   EXPECT_NE(demo.output.find("baseline (no enhance, no removal)"), std::string::npos);
 }
 

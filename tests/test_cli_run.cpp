@@ -14,6 +14,7 @@
 
 namespace {
 
+using lumaslam::test::readRunSummary;
 using lumaslam::test::runCli;
 using lumaslam::test::TempDir;
 
@@ -30,8 +31,7 @@ TEST(CliRun, TracksASyntheticRgbdDatasetAndWritesResults) {
   for (const char* name : {"trajectory.txt", "keyframes.txt", "timing.csv", "summary.json"}) {
     EXPECT_TRUE(std::filesystem::exists(out / name)) << name;
   }
-  std::ifstream summary_file(out / "summary.json");
-  const auto summary = nlohmann::json::parse(summary_file);
+  const auto summary = readRunSummary(out);
   EXPECT_EQ(summary["frames"].get<int>(), 60);
   EXPECT_GE(summary["tracked"].get<int>(), 58);
   ASSERT_TRUE(summary.contains("evaluation")) << run.output;
@@ -64,8 +64,7 @@ TEST(CliRun, RepeatWritesEachRunAndTheirSpread) {
   for (int k = 1; k <= 3; ++k) {
     const auto run_dir = out / ("run_" + std::to_string(k));
     EXPECT_TRUE(std::filesystem::exists(run_dir / "trajectory.txt")) << run_dir;
-    std::ifstream summary_file(run_dir / "summary.json");
-    rmse.push_back(nlohmann::json::parse(summary_file)["evaluation"]["ate"]["rmse"].get<double>());
+    rmse.push_back(readRunSummary(run_dir)["evaluation"]["ate"]["rmse"].get<double>());
   }
   const auto& ate = report["ate_rmse"];
   EXPECT_DOUBLE_EQ(ate["min"].get<double>(), *std::min_element(rmse.begin(), rmse.end()));
@@ -123,8 +122,7 @@ TEST(CliRun, VocabularyRelocalizesAfterABlackoutAndAMissingOneIsAnError) {
       runCli(run + " --vocabulary " + vocab.string() + " --out " + (dir.path() / "with").string());
   ASSERT_EQ(with.exit_code, 0) << with.output;
   EXPECT_NE(with.output.find("relocalization is on"), std::string::npos) << with.output;
-  std::ifstream summary_file(dir.path() / "with" / "summary.json");
-  const auto summary = nlohmann::json::parse(summary_file);
+  const auto summary = readRunSummary(dir.path() / "with");
   EXPECT_EQ(summary["lost"].get<int>(), 20) << with.output;
   EXPECT_GE(summary["relocalized"].get<int>(), 1) << with.output;
   EXPECT_EQ(lumaslam::io::readTrajectory(dir.path() / "with" / "trajectory.txt").size(), 70U);

@@ -10,6 +10,7 @@
 
 namespace {
 
+using lumaslam::test::readRunSummary;
 using lumaslam::test::runCli;
 using lumaslam::test::TempDir;
 
@@ -25,8 +26,7 @@ TEST(CliRunDetector, RemovesTheBoxesOfASyntheticWalkingDataset) {
                           " --sequential --out " + out.string());
   ASSERT_EQ(run.exit_code, 0) << run.output;
 
-  std::ifstream summary_file(out / "summary.json");
-  const auto summary = nlohmann::json::parse(summary_file);
+  const auto summary = readRunSummary(out);
   EXPECT_NE(summary["detector"]["name"].get<std::string>().find("box_file"), std::string::npos);
   EXPECT_GT(summary["detector"]["dropped_features_per_frame"].get<double>(), 10.0);
   EXPECT_EQ(summary["tracked"].get<int>(), 40);

@@ -13,6 +13,7 @@
 namespace {
 
 using lumaslam::test::pathLength;
+using lumaslam::test::readRunSummary;
 using lumaslam::test::runCli;
 using lumaslam::test::TempDir;
 
@@ -25,8 +26,7 @@ TEST(CliRunKittiMono, Sequence07Excerpt) {
   const auto run = runCli("run --dataset kitti:" + sequence.string() + " --settings " +
                           settings.string() + " --sequential --out " + dir.path().string());
   ASSERT_EQ(run.exit_code, 0) << run.output;
-  std::ifstream summary_file(dir.path() / "summary.json");
-  const auto summary = nlohmann::json::parse(summary_file);
+  const auto summary = readRunSummary(dir.path());
   EXPECT_GE(summary["tracked"].get<double>(), 0.9 * summary["frames"].get<double>());
   ASSERT_TRUE(summary.contains("evaluation")) << run.output;
   EXPECT_EQ(summary["evaluation"]["alignment"]["mode"].get<std::string>(), "sim3");

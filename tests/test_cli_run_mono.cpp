@@ -13,6 +13,7 @@
 namespace {
 
 using lumaslam::test::pathLength;
+using lumaslam::test::readRunSummary;
 using lumaslam::test::runCli;
 using lumaslam::test::TempDir;
 
@@ -29,8 +30,7 @@ TEST(CliRunMono, TracksTheRgbStreamOfASyntheticDatasetWithSim3Evaluation) {
   const auto run = runCli("run --dataset tum:" + data.string() + " --settings " +
                           settings.string() + " --sequential --out " + out.string());
   ASSERT_EQ(run.exit_code, 0) << run.output;
-  std::ifstream summary_file(out / "summary.json");
-  const auto summary = nlohmann::json::parse(summary_file);
+  const auto summary = readRunSummary(out);
   EXPECT_EQ(summary["frames"].get<int>(), 150);
   // Initialisation waits for ~1 degree of parallax (the camera eases in from rest).
   EXPECT_GE(summary["tracked"].get<int>(), 130);

@@ -11,13 +11,9 @@
 
 namespace {
 
+using lumaslam::test::readRunSummary;
 using lumaslam::test::runCli;
 using lumaslam::test::TempDir;
-
-nlohmann::json readSummary(const std::filesystem::path& out) {
-  std::ifstream file(out / "summary.json");
-  return nlohmann::json::parse(file);
-}
 
 TEST(CliRunStereo, TracksASyntheticEurocDataset) {
   TempDir dir("cli_run_stereo");
@@ -28,7 +24,7 @@ TEST(CliRunStereo, TracksASyntheticEurocDataset) {
   const auto run =
       runCli("run --dataset euroc:" + data.string() + " --sequential --out " + out.string());
   ASSERT_EQ(run.exit_code, 0) << run.output;
-  const auto summary = readSummary(out);
+  const auto summary = readRunSummary(out);
   EXPECT_EQ(summary["frames"].get<int>(), 40);
   EXPECT_EQ(summary["tracked"].get<int>(), 40);
   ASSERT_TRUE(summary.contains("evaluation")) << run.output;
@@ -43,7 +39,7 @@ TEST(CliRunStereo, TracksRealEurocWithItsCalibration) {
   const auto run = runCli("run --dataset euroc:" + root.string() + " --settings " +
                           settings.string() + " --max-frames 30 --out " + dir.path().string());
   ASSERT_EQ(run.exit_code, 0) << run.output;
-  const auto summary = readSummary(dir.path());
+  const auto summary = readRunSummary(dir.path());
   EXPECT_EQ(summary["frames"].get<int>(), 30);
   EXPECT_EQ(summary["tracked"].get<int>(), 30);
 }
