@@ -249,6 +249,17 @@ TEST(Settings, DatasetRootIsResolvedAgainstTheSettingsFolder) {
   EXPECT_EQ(loadSettings(file).system.datasetRoot, fs::path("/abs/seq"));
 }
 
+TEST(Settings, LoopVocabularyIsResolvedAgainstTheSettingsFolder) {
+  lumaslam::test::TempDir dir("settings_vocab");
+  const fs::path file = dir.path() / "run.yaml";
+  std::ofstream(file) << kMonoNew;
+  EXPECT_TRUE(loadSettings(file).loop.vocabulary.empty());
+  std::ofstream(file) << kMonoNew << "Loop.vocabulary: \"voc/orb.bin\"\n";
+  EXPECT_EQ(loadSettings(file).loop.vocabulary, dir.path() / "voc/orb.bin");
+  std::ofstream(file) << kMonoNew << "Loop.vocabulary: \"/abs/ORBvoc.txt\"\n";
+  EXPECT_EQ(loadSettings(file).loop.vocabulary, fs::path("/abs/ORBvoc.txt"));
+}
+
 TEST(Settings, ResizeScalesIntrinsics) {
   const Settings s = parse(kMonoNew + "Camera.newWidth: 320\nCamera.newHeight: 240\n");
   ASSERT_TRUE(s.camera.resizeTo.has_value());

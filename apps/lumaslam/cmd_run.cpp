@@ -14,6 +14,7 @@ const bool registered = registerCommand(
       auto max_frames = std::make_shared<std::size_t>(0);
       auto enhance = std::make_shared<std::string>();
       auto repeats = std::make_shared<int>(1);
+      auto vocabulary = std::make_shared<std::string>();
       cmd.add_option("--dataset", options->dataset,
                      "tum:PATH (RGB-D), euroc:PATH or kitti:PATH (stereo; mono is in progress), "
                      "e.g. a dataset or the output of `lumaslam synth`")
@@ -27,12 +28,16 @@ const bool registered = registerCommand(
       cmd.add_option("--max-frames", *max_frames, "Stop after this many frames (0: all)");
       cmd.add_flag("--sequential", options->sequential,
                    "Run local mapping in the caller's thread (deterministic)");
+      cmd.add_option("--vocabulary", *vocabulary,
+                     "Place-recognition vocabulary for relocalization, overriding "
+                     "Loop.vocabulary (`lumaslam vocab train/convert` output, or ORBvoc.txt)");
       cmd.add_option("--repeat", *repeats,
                      "Run N times into OUT/run_K and report the min/median/max spread")
           ->check(CLI::PositiveNumber);
-      return [options, max_frames, enhance, repeats] {
+      return [options, max_frames, enhance, repeats, vocabulary] {
         if (*max_frames > 0) options->max_frames = *max_frames;
         if (!enhance->empty()) options->enhance_preset = *enhance;
+        if (!vocabulary->empty()) options->vocabulary = *vocabulary;
         return *repeats > 1 ? runRepeated(*options, *repeats) : runPipeline(*options);
       };
     });

@@ -54,6 +54,7 @@ int runPipeline(const RunOptions& options) {
   SystemOptions system_options;
   system_options.enhance_preset = options.enhance_preset;
   if (options.sequential) system_options.sequential = true;
+  system_options.vocabulary = options.vocabulary;
   System system(settings, system_options);
 
   std::ofstream timing(options.out / "timing.csv");

@@ -15,6 +15,7 @@ struct RunOptions {
   std::filesystem::path out = "lumaslam_out";
   std::optional<std::size_t> max_frames;
   bool sequential = false;
+  std::optional<std::filesystem::path> vocabulary;  // overrides Loop.vocabulary
 };
 
 // Returns the process exit code; throws lumaslam::Error for bad input.

@@ -10,6 +10,7 @@
 #include "lumaslam/core/error.h"
 #include "lumaslam/enhance/enhancer.h"
 #include "lumaslam/io/dataset_reader.h"
+#include "lumaslam/loop/place_recognition.h"
 #include "lumaslam/mapping/local_mapper.h"
 #include "lumaslam/track/frame_builder.h"
 
@@ -93,6 +94,17 @@ System::System(const io::Settings& settings, const SystemOptions& options)
     enhancer_ = std::make_unique<enhance::Enhancer>(enhancer_params);
     // The right image gets its own online statistics (the enhancer learns from every frame).
     if (stereo) right_enhancer_ = std::make_unique<enhance::Enhancer>(enhancer_params);
+  }
+
+  const auto vocabulary = options.vocabulary.value_or(settings_.loop.vocabulary);
+  if (vocabulary.empty()) {
+    spdlog::info("no vocabulary (Loop.vocabulary / --vocabulary): relocalization is off");
+  } else {
+    places_ = loop::PlaceRecognition::fromFile(vocabulary);
+    spdlog::info("{}: vocabulary with {} words (k {}, L {}): relocalization is on",
+                 vocabulary.string(), places_->vocabulary().wordCount(),
+                 places_->vocabulary().branching(), places_->vocabulary().depth());
+    map_->setKeyFrameIndex(places_);
   }
 
   const auto camera = frameCameraFrom(settings_, rectifier_.get());

@@ -1,6 +1,7 @@
 #pragma once
 // The facade the CLI and tests use: feed frames, get poses. Owns the map, the tracker (runs in
 // the caller's thread) and the local mapper (own thread, or inline when System.sequential).
+#include <filesystem>
 #include <memory>
 #include <optional>
 #include <string>
@@ -22,6 +23,9 @@ class Enhancer;
 namespace io {
 struct FrameData;
 }
+namespace loop {
+class PlaceRecognition;
+}
 namespace mapping {
 class LocalMapper;
 }
@@ -32,6 +36,8 @@ class FrameBuilder;
 struct SystemOptions {
   std::optional<std::string> enhance_preset;  // overrides Enhancement.preset ("off" disables)
   std::optional<bool> sequential;             // overrides System.sequential
+  // Overrides Loop.vocabulary (a vocabulary file for relocalization; see docs/settings.md).
+  std::optional<std::filesystem::path> vocabulary;
 };
 
 struct FrameTiming {  // milliseconds
@@ -85,6 +91,9 @@ class System {
   std::size_t keyFrameCount() const;
   std::size_t mapPointCount() const;
   const track::Tracker& tracker() const { return *tracker_; }
+  // Vocabulary + keyframe database, shared by relocalization and loop closing; null when no
+  // vocabulary was given (relocalization off).
+  std::shared_ptr<loop::PlaceRecognition> placeRecognition() const { return places_; }
   const io::Settings& settings() const { return settings_; }
   // The camera tracking works in (the rectified one for an unrectified stereo pair).
   const track::FrameCamera& frameCamera() const;
@@ -100,6 +109,7 @@ class System {
   io::Settings settings_;
   bool sequential_ = false;
   std::shared_ptr<map::Map> map_;
+  std::shared_ptr<loop::PlaceRecognition> places_;  // the Map's KeyFrameIndex
   std::unique_ptr<enhance::Enhancer> enhancer_;
   std::unique_ptr<enhance::Enhancer> right_enhancer_;   // stereo: the right image's own
   std::unique_ptr<camera::StereoRectifier> rectifier_;  // unrectified stereo pairs only

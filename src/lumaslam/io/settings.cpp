@@ -272,6 +272,15 @@ SystemSettings readSystem(const KeyReader& in) {
   return system;
 }
 
+LoopSettings readLoop(const KeyReader& in) {
+  LoopSettings loop;
+  if (const auto vocabulary = in.find<std::string>({"Loop.vocabulary"})) {
+    if (vocabulary->empty()) in.file().invalid("Loop.vocabulary", "must not be empty");
+    loop.vocabulary = *vocabulary;
+  }
+  return loop;
+}
+
 void checkFileVersion(const KeyReader& in) {
   if (const auto version = in.find<std::string>({"File.version"}); version && *version != "1.0") {
     in.file().invalid("File.version", fmt::format("expected \"1.0\", found \"{}\"", *version));
@@ -365,6 +374,7 @@ Settings Settings::fromFile(std::shared_ptr<const core::SettingsFile> file,
   }
   settings.orb = readOrb(in);
   settings.system = readSystem(in);
+  settings.loop = readLoop(in);
   return settings;
 }
 
@@ -376,8 +386,9 @@ Settings loadSettings(const std::filesystem::path& path, std::optional<SensorTyp
   auto file = std::make_shared<const core::SettingsFile>(core::SettingsFile::open(path));
   Settings settings = Settings::fromFile(std::move(file), sensor);
   settings.path = path;
-  auto& root = settings.system.datasetRoot;
-  if (!root.empty() && root.is_relative()) root = path.parent_path() / root;
+  for (auto* relative : {&settings.system.datasetRoot, &settings.loop.vocabulary}) {
+    if (!relative->empty() && relative->is_relative()) *relative = path.parent_path() / *relative;
+  }
   return settings;
 }
 

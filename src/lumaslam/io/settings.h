@@ -77,6 +77,13 @@ struct SystemSettings {
   std::filesystem::path datasetRoot;
 };
 
+struct LoopSettings {
+  // Loop.vocabulary: place-recognition vocabulary (our binary or DBoW2 text, e.g. ORBvoc.txt)
+  // for relocalization; relative paths resolved against the settings file's folder. Empty
+  // when not set: relocalization is off.
+  std::filesystem::path vocabulary;
+};
+
 struct Settings {
   SensorType sensor = SensorType::Monocular;
   CameraSettings camera;  // camera 1 (left camera for stereo, colour camera for RGB-D)
@@ -86,6 +93,7 @@ struct Settings {
   DepthSettings depth;
   OrbSettings orb;
   SystemSettings system;
+  LoopSettings loop;
   // The whole file, for modules that read their own sections (Enhancement.*, Detector.*).
   std::shared_ptr<const core::SettingsFile> file;
   std::filesystem::path path;  // empty when read from a string
@@ -109,7 +117,8 @@ struct Settings {
                            std::optional<SensorType> sensor = std::nullopt);
 };
 
-// Opens `path` and parses it; a relative System.datasetRoot is resolved against its folder.
+// Opens `path` and parses it; a relative System.datasetRoot or Loop.vocabulary is resolved
+// against its folder.
 Settings loadSettings(const std::filesystem::path& path,
                       std::optional<SensorType> sensor = std::nullopt);
 

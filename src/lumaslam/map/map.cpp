@@ -6,9 +6,19 @@
 namespace lumaslam::map {
 
 void Map::addKeyFrame(const std::shared_ptr<KeyFrame>& keyframe) {
-  std::unique_lock lock(mutex_);
-  if (keyframes_.empty() && origin_.expired()) origin_ = keyframe;
-  keyframes_[keyframe->id()] = keyframe;
+  {
+    std::unique_lock lock(mutex_);
+    if (keyframes_.empty() && origin_.expired()) origin_ = keyframe;
+    keyframes_[keyframe->id()] = keyframe;
+  }
+  if (index_) index_->add(keyframe);
+}
+
+void Map::setKeyFrameIndex(std::shared_ptr<KeyFrameIndex> index) {
+  index_ = std::move(index);
+  if (!index_) return;
+  index_->clear();
+  for (const auto& keyframe : keyFrames()) index_->add(keyframe);
 }
 
 void Map::addMapPoint(const std::shared_ptr<MapPoint>& point) {
@@ -117,8 +127,11 @@ bool Map::retireKeyFrame(const std::shared_ptr<KeyFrame>& keyframe) {
   if (parent) parent->eraseChild(keyframe->id());
 
   keyframe->retire(parent);
-  std::unique_lock lock(mutex_);
-  keyframes_.erase(keyframe->id());
+  {
+    std::unique_lock lock(mutex_);
+    keyframes_.erase(keyframe->id());
+  }
+  if (index_) index_->erase(keyframe->id());
   return true;
 }
 
@@ -142,12 +155,15 @@ void Map::replaceMapPoint(const std::shared_ptr<MapPoint>& old_point,
 }
 
 void Map::clear() {
-  std::unique_lock lock(mutex_);
-  keyframes_.clear();
-  points_.clear();
-  origin_.reset();
-  next_keyframe_id_ = 0;
-  next_point_id_ = 0;
+  {
+    std::unique_lock lock(mutex_);
+    keyframes_.clear();
+    points_.clear();
+    origin_.reset();
+    next_keyframe_id_ = 0;
+    next_point_id_ = 0;
+  }
+  if (index_) index_->clear();
 }
 
 }  // namespace lumaslam::map

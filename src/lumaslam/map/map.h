@@ -11,6 +11,8 @@
 //      held only inside one accessor and never two at once: methods that need another
 //      object's data copy it out first (e.g. KeyFrame::updateConnections reads each point's
 //      observations, releases, then writes its own edges, then each neighbour's).
+//   4. The KeyFrameIndex's own lock (place-recognition database): a leaf, taken only inside
+//      its calls, which the Map makes with none of its own locks held.
 // Objects are never deleted under someone's feet: retiring marks them bad and removes them
 // from the Map; shared_ptrs held elsewhere keep them alive until released.
 #include <atomic>
@@ -21,6 +23,7 @@
 #include <vector>
 
 #include "lumaslam/map/keyframe.h"
+#include "lumaslam/map/keyframe_index.h"
 #include "lumaslam/map/map_point.h"
 
 namespace lumaslam::map {
@@ -56,12 +59,17 @@ class Map {
   std::mutex& updateMutex() const { return update_mutex_; }
   void clear();
 
+  // Keeps `index` in step with the keyframes from now on (the ones already in the map are
+  // added at once). Set it before other threads use the map; null detaches it.
+  void setKeyFrameIndex(std::shared_ptr<KeyFrameIndex> index);
+
  private:
   mutable std::mutex update_mutex_;
   mutable std::shared_mutex mutex_;
   std::unordered_map<Id, std::shared_ptr<KeyFrame>> keyframes_;
   std::unordered_map<Id, std::shared_ptr<MapPoint>> points_;
   std::weak_ptr<KeyFrame> origin_;
+  std::shared_ptr<KeyFrameIndex> index_;
   std::atomic<Id> next_keyframe_id_{0};
   std::atomic<Id> next_point_id_{0};
 };
