@@ -10,6 +10,7 @@
 #include "lumaslam/core/error.h"
 #include "lumaslam/enhance/enhancer.h"
 #include "lumaslam/io/dataset_reader.h"
+#include "lumaslam/loop/loop_closer.h"
 #include "lumaslam/loop/place_recognition.h"
 #include "lumaslam/mapping/local_mapper.h"
 #include "lumaslam/track/frame_builder.h"
@@ -109,8 +110,23 @@ System::System(const io::Settings& settings, const SystemOptions& options)
 
   const auto camera = frameCameraFrom(settings_, rectifier_.get());
   frame_builder_ = std::make_unique<track::FrameBuilder>(camera, orbSettingsFrom(settings_));
+  if (places_ && options.loop_closing.value_or(settings_.loop.closing)) {
+    loop::LoopCloserParams loop_params;
+    loop_params.threaded = !sequential_;
+    loop_params.direct_index_levels_up = loop::PlaceRecognition::kDirectIndexLevelsUp;
+    // The mapper exists before the first keyframe reaches the closer.
+    loop_closer_ = std::make_unique<loop::LoopCloser>(
+        map_, places_->vocabulary(), places_->database(), loop_params,
+        [this] { return mapper_->pauseProcessing(); });
+    spdlog::info("loop closing is on");
+  }
   mapping::LocalMapperParams mapper_params;
   mapper_params.threaded = !sequential_;
+  if (loop_closer_) {
+    mapper_params.on_keyframe_processed = [closer = loop_closer_.get()](const auto& keyframe) {
+      closer->insertKeyFrame(keyframe);
+    };
+  }
   mapper_ = std::make_unique<mapping::LocalMapper>(map_, camera, frame_builder_->pyramid(),
                                                    mapper_params);
   track::TrackerParams tracker_params;
@@ -131,6 +147,7 @@ System::~System() {
 
 void System::shutdown() {
   if (mapper_) mapper_->shutdown();
+  if (loop_closer_) loop_closer_->shutdown();  // after the mapper: it feeds the closer
 }
 
 cv::Mat System::toGray(const cv::Mat& image, FrameTiming& timing) {
@@ -250,6 +267,7 @@ FrameResult System::track(const SensorFrame& input) {
   if (sequential_) {
     stage = Clock::now();
     mapper_->processPending();
+    if (loop_closer_) loop_closer_->processPending();
     result.timing.mapping = msSince(stage);
   }
   result.timing.total = msSince(start);

@@ -11,6 +11,7 @@
 #include "lumaslam/map/keyframe.h"
 #include "lumaslam/map/map_point.h"
 #include "lumaslam/mapping/point_fusion.h"
+#include "lumaslam/optimize/local_ba.h"
 #include "lumaslam/optimize/pose_graph.h"
 
 namespace lumaslam::loop {
@@ -45,7 +46,7 @@ optimize::PoseGraphEdge edgeBetween(map::Id i, map::Id j, const SE3& T_i_w, cons
 }  // namespace
 
 LoopCloser::LoopCloser(std::shared_ptr<map::Map> map, const Vocabulary& vocabulary,
-                       KeyFrameDatabase& database, const LoopCloserParams& params,
+                       const KeyFrameDatabase& database, const LoopCloserParams& params,
                        PauseMapping pause_mapping)
     : map_(std::move(map)),
       vocabulary_(vocabulary),
@@ -132,9 +133,6 @@ std::optional<KeyFrameBow> LoopCloser::bowOf(const map::KeyFrame& keyframe) cons
 
 void LoopCloser::process(const std::shared_ptr<map::KeyFrame>& keyframe) {
   if (!keyframe || keyframe->isBad()) return;
-  if (!database_.contains(keyframe->id())) {
-    if (auto entry = bowOf(*keyframe)) database_.add(keyframe->id(), std::move(*entry));
-  }
   // No loop right after the start or the last loop (ORB-SLAM: 10 keyframes).
   const auto since =
       static_cast<long long>(keyframe->id()) - static_cast<long long>(last_loop_keyframe_);
@@ -153,6 +151,95 @@ void LoopCloser::process(const std::shared_ptr<map::KeyFrame>& keyframe) {
   }
   last_loop_keyframe_ = keyframe->id();
   detector_.reset();
+  if (params_.global_bundle_adjustment) {
+    abort_global_ba_ = false;
+    globalBundleAdjustment();
+  }
+}
+
+bool LoopCloser::globalBundleAdjustment() {
+  // Snapshot of the whole map (no lock across objects: each accessor copies).
+  const auto keyframes = map_->keyFrames();
+  const auto origin = map_->originKeyFrame();
+  if (keyframes.size() < 2) return false;
+  const auto& k = keyframes.front()->intrinsics();
+  optimize::LocalBAProblem problem;
+  problem.camera = {k.fx, k.fy, k.cx, k.cy, k.bf};
+  PosesById snapshot;
+  for (const auto& kf : keyframes) {
+    if (kf->isBad()) continue;
+    snapshot[kf->id()] = kf->T_c_w();
+    problem.keyFrames.push_back({kf->id(), snapshot[kf->id()], kf == origin});
+  }
+  std::vector<std::shared_ptr<map::MapPoint>> points;
+  for (const auto& point : map_->mapPoints()) {
+    if (point->isBad()) continue;
+    bool observed = false;
+    for (const auto& [kf, index] : point->observations()) {
+      if (!snapshot.contains(kf->id())) continue;
+      const auto i = static_cast<std::size_t>(index);
+      const auto& f = kf->features();
+      optimize::BAObservation obs;
+      obs.keyFrameId = kf->id();
+      obs.pointId = point->id();
+      obs.uv = {f.undistorted[i].x, f.undistorted[i].y};
+      obs.uRight = k.bf > 0 ? f.u_right[i] : -1.0;
+      obs.invSigma2 =
+          kf->pyramid().inv_sigma2[static_cast<std::size_t>(std::max(0, f.keypoints[i].octave))];
+      problem.observations.push_back(obs);
+      observed = true;
+    }
+    if (!observed) continue;
+    problem.points.push_back({point->id(), point->position()});
+    points.push_back(point);
+  }
+  if (problem.observations.empty() || abort_global_ba_) return false;
+  optimize::LocalBAOptions options;
+  options.maxIterations = params_.global_ba_iterations;
+  options.refinementIterations = 0;
+  options.abort = &abort_global_ba_;
+  const auto result = optimize::optimizeLocalBundle(problem, options);
+  if (result.aborted) return false;
+
+  std::unique_lock<std::mutex> mapping_paused;
+  if (pause_mapping_) mapping_paused = pause_mapping_();
+  std::lock_guard update(map_->updateMutex());
+  // World correction of each adjusted keyframe: X' = T_w_c(new) * T_c_w(snapshot) * X.
+  std::unordered_map<map::Id, SE3> correction;
+  for (std::size_t v = 0; v < problem.keyFrames.size(); ++v) {
+    const map::Id id = problem.keyFrames[v].id;
+    correction[id] = result.T_c_w[v].inverse() * snapshot[id];
+  }
+  for (const auto& kf : map_->keyFrames()) {
+    if (kf->isBad()) continue;
+    if (const auto own = correction.find(kf->id()); own != correction.end()) {
+      kf->setPose((own->second * kf->T_w_c()).inverse());
+      continue;
+    }
+    // Added during the adjustment: follow the nearest adjusted ancestor.
+    for (auto ancestor = kf->parent(); ancestor; ancestor = ancestor->parent()) {
+      if (const auto found = correction.find(ancestor->id()); found != correction.end()) {
+        kf->setPose((found->second * kf->T_w_c()).inverse());
+        correction[kf->id()] = found->second;
+        break;
+      }
+    }
+  }
+  std::unordered_set<map::Id> adjusted;
+  for (std::size_t p = 0; p < points.size(); ++p) {
+    points[p]->setPosition(result.X_w[p]);
+    adjusted.insert(points[p]->id());
+  }
+  for (const auto& point : map_->mapPoints()) {
+    if (point->isBad()) continue;
+    if (!adjusted.contains(point->id())) {
+      const auto found = correction.find(point->referenceKeyFrameId());
+      if (found == correction.end()) continue;
+      point->setPosition(found->second * point->position());
+    }
+    point->updateNormalAndDepth();
+  }
+  return true;
 }
 
 std::optional<LoopMatch> LoopCloser::computeLoop(

@@ -11,8 +11,11 @@
 //     correction, fuse the duplicated points, optimise the essential graph (spanning tree,
 //     strong covisibility and loop edges) with optimize::optimizePoseGraph, then move every
 //     other point with the keyframe it was corrected by (or its reference keyframe).
-// A rejected candidate leaves the map untouched. Global bundle adjustment after the loop is
-// not implemented.
+//  4. optionally a global bundle adjustment of every keyframe and point (origin fixed), solved
+//     on a snapshot without locks and written back with mapping paused; keyframes added
+//     meanwhile follow their nearest ancestor in the spanning tree (ORB-SLAM's RunGlobalBA).
+//     It runs in the closer's thread and stops early on abortGlobalBundleAdjustment().
+// A rejected candidate leaves the map untouched.
 #include <atomic>
 #include <condition_variable>
 #include <deque>
@@ -47,6 +50,8 @@ struct LoopCloserParams {
   float fusion_radius_px = 4.0F;       // SearchAndFuse window (ORB-SLAM: 4)
   int strong_covisibility = 100;       // essential-graph covisibility edges (ORB-SLAM: 100)
   int pose_graph_iterations = 20;
+  bool global_bundle_adjustment = true;
+  int global_ba_iterations = 10;
 };
 
 struct LoopMatch {
@@ -73,7 +78,7 @@ class LoopCloser {
 
   // Keeps references to the vocabulary and database: both must outlive the closer.
   LoopCloser(std::shared_ptr<map::Map> map, const Vocabulary& vocabulary,
-             KeyFrameDatabase& database, const LoopCloserParams& params = {},
+             const KeyFrameDatabase& database, const LoopCloserParams& params = {},
              PauseMapping pause_mapping = {});
   ~LoopCloser();
   LoopCloser(const LoopCloser&) = delete;
@@ -93,6 +98,9 @@ class LoopCloser {
       const std::shared_ptr<map::KeyFrame>& current,
       const std::vector<std::shared_ptr<map::KeyFrame>>& candidates) const;
   ClosedLoop correctLoop(const LoopMatch& match);
+  // Returns false if there was nothing to adjust or it was aborted (map unchanged then).
+  bool globalBundleAdjustment();
+  void abortGlobalBundleAdjustment() { abort_global_ba_ = true; }
 
   std::vector<ClosedLoop> closedLoops() const;
   int rejectedCandidates() const { return rejected_; }
@@ -104,7 +112,7 @@ class LoopCloser {
 
   std::shared_ptr<map::Map> map_;
   const Vocabulary& vocabulary_;
-  KeyFrameDatabase& database_;
+  const KeyFrameDatabase& database_;
   LoopCloserParams params_;
   PauseMapping pause_mapping_;
   LoopDetector detector_;
@@ -117,6 +125,7 @@ class LoopCloser {
   bool stopping_ = false;
   std::vector<ClosedLoop> closed_;
   std::atomic<int> rejected_{0};
+  std::atomic<bool> abort_global_ba_{false};
   std::thread thread_;
 };
 
