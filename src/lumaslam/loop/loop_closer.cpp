@@ -8,6 +8,8 @@
 #include <unordered_set>
 #include <utility>
 
+#include <spdlog/spdlog.h>
+
 #include "lumaslam/map/keyframe.h"
 #include "lumaslam/map/map_point.h"
 #include "lumaslam/mapping/point_fusion.h"
@@ -145,6 +147,9 @@ void LoopCloser::process(const std::shared_ptr<map::KeyFrame>& keyframe) {
     return;
   }
   const ClosedLoop closed = correctLoop(*match);
+  spdlog::info("loop closed: keyframe {} -> {}, {} inliers, moved {:.1f} mm / {:.2f} deg",
+               closed.current, closed.loop, closed.inliers, 1000.0 * closed.correction_m,
+               closed.correction_deg);
   {
     std::lock_guard lock(queue_mutex_);
     closed_.push_back(closed);
@@ -196,9 +201,13 @@ bool LoopCloser::globalBundleAdjustment() {
   if (problem.observations.empty() || abort_global_ba_) return false;
   optimize::LocalBAOptions options;
   options.maxIterations = params_.global_ba_iterations;
-  options.refinementIterations = 0;
+  options.refinementIterations = params_.global_ba_iterations;  // without the outliers
   options.abort = &abort_global_ba_;
   const auto result = optimize::optimizeLocalBundle(problem, options);
+  spdlog::info(
+      "global BA after the loop: {} keyframes, {} points, {} iterations, cost {:.4g} -> {:.4g}{}",
+      problem.keyFrames.size(), problem.points.size(), result.iterations, result.initialCost,
+      result.finalCost, result.aborted ? " (aborted)" : "");
   if (result.aborted) return false;
 
   std::unique_lock<std::mutex> mapping_paused;
@@ -217,7 +226,9 @@ bool LoopCloser::globalBundleAdjustment() {
       continue;
     }
     // Added during the adjustment: follow the nearest adjusted ancestor.
-    for (auto ancestor = kf->parent(); ancestor; ancestor = ancestor->parent()) {
+    std::size_t steps = 0;  // bounded even if the spanning tree were broken
+    for (auto ancestor = kf->parent(); ancestor && steps < keyframes.size() + 1;
+         ancestor = ancestor->parent(), ++steps) {
       if (const auto found = correction.find(ancestor->id()); found != correction.end()) {
         kf->setPose((found->second * kf->T_w_c()).inverse());
         correction[kf->id()] = found->second;

@@ -51,7 +51,7 @@ struct LoopCloserParams {
   int strong_covisibility = 100;       // essential-graph covisibility edges (ORB-SLAM: 100)
   int pose_graph_iterations = 20;
   bool global_bundle_adjustment = true;
-  int global_ba_iterations = 10;
+  int global_ba_iterations = 30;
 };
 
 struct LoopMatch {
