@@ -260,6 +260,12 @@ TEST(Settings, LoopVocabularyIsResolvedAgainstTheSettingsFolder) {
   EXPECT_EQ(loadSettings(file).loop.vocabulary, fs::path("/abs/ORBvoc.txt"));
 }
 
+TEST(Settings, LoopClosingIsOnByDefaultAndCanBeTurnedOff) {
+  EXPECT_TRUE(parse(kMonoNew).loop.closing);
+  EXPECT_FALSE(parse(kMonoNew + "Loop.closing: 0\n").loop.closing);
+  EXPECT_TRUE(parse(kMonoNew + "Loop.closing: 1\n").loop.closing);
+}
+
 TEST(Settings, ResizeScalesIntrinsics) {
   const Settings s = parse(kMonoNew + "Camera.newWidth: 320\nCamera.newHeight: 240\n");
   ASSERT_TRUE(s.camera.resizeTo.has_value());

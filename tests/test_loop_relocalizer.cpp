@@ -6,16 +6,12 @@
 #include <cstdio>
 
 #include <gtest/gtest.h>
-#include <opencv2/imgproc.hpp>
+
+#include "loop_test_map.h"
 
 #include "lumaslam/core/error.h"
 #include "lumaslam/loop/relocalizer.h"
 #include "lumaslam/loop/vocabulary_training.h"
-#include "lumaslam/map/keyframe.h"
-#include "lumaslam/map/map_point.h"
-#include "lumaslam/synth/preset.h"
-#include "lumaslam/synth/sequence.h"
-#include "lumaslam/track/frame_builder.h"
 
 namespace {
 
@@ -23,31 +19,15 @@ using namespace lumaslam;
 
 constexpr int kFrames = 24;  // 15 degrees apart
 
-track::FrameCamera cameraOf(const synth::Rig& rig) {
-  track::FrameCamera camera;
-  camera.fx = rig.camera.fx;
-  camera.fy = rig.camera.fy;
-  camera.cx = rig.camera.cx;
-  camera.cy = rig.camera.cy;
-  camera.size = {rig.camera.width, rig.camera.height};
-  camera.bf = 0.08 * rig.camera.fx;  // TUM's virtual 8 cm baseline
-  camera.close_depth = 40 * 0.08;
-  return camera;
-}
-
 struct LapMap {
   synth::SequenceRenderer sequence{synth::findPreset("loop-rgbd"), kFrames, 1};
-  track::FrameBuilder builder{cameraOf(sequence.rig()), feature::OrbSettings{}};
+  track::FrameBuilder builder{test::rgbdCameraOf(sequence.rig()), feature::OrbSettings{}};
   map::Map map;
   loop::Vocabulary vocabulary;
   loop::KeyFrameDatabase database;
 
   track::Frame buildFrame(const synth::SequenceRenderer& from, int index) const {
-    const synth::Frame frame = from.render(index);
-    cv::Mat gray;
-    cv::cvtColor(frame.cam0.image, gray, cv::COLOR_BGR2GRAY);
-    return builder.build(static_cast<std::size_t>(index), frame.timestamp(), gray,
-                         frame.cam0.depth);
+    return test::buildRgbdFrame(builder, from, index);
   }
 
   loop::RelocalizationFrame relocalizationFrame(const track::Frame& frame) const {
@@ -66,21 +46,7 @@ struct LapMap {
 
     for (const auto& frame : keyframes) {
       const SE3 T_w_c = sequence.render(static_cast<int>(frame.index)).cam0.T_w_c;
-      auto keyframe = std::make_shared<map::KeyFrame>(
-          map.nextKeyFrameId(), frame.index, frame.timestamp, T_w_c.inverse(), frame.features,
-          builder.pyramid(), builder.camera().intrinsics());
-      map.addKeyFrame(keyframe);
-      for (std::size_t i = 0; i < frame.size(); ++i) {
-        const float z = frame.features->depth[i];
-        if (!(z > 0.1F && z < 8.0F)) continue;
-        const Eigen::Vector3d X_w = T_w_c * frame.unprojectCamera(i, builder.camera().intrinsics());
-        auto point = std::make_shared<map::MapPoint>(map.nextMapPointId(), X_w, keyframe);
-        keyframe->setMapPoint(i, point);
-        point->addObservation(keyframe, static_cast<int>(i));
-        point->updateNormalAndDepth();
-        point->computeDistinctiveDescriptor();
-        map.addMapPoint(point);
-      }
+      const auto keyframe = test::addKeyFrameWithPoints(map, builder, frame, T_w_c);
       loop::KeyFrameBow entry;
       vocabulary.transform(frame.features->descriptors, 4, entry.bow, entry.features);
       database.add(keyframe->id(), std::move(entry));

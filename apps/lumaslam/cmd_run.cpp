@@ -35,6 +35,8 @@ const bool registered = registerCommand(
       cmd.add_option("--vocabulary", *vocabulary,
                      "Place-recognition vocabulary for relocalization, overriding "
                      "Loop.vocabulary (`lumaslam vocab train/convert` output, or ORBvoc.txt)");
+      cmd.add_flag("--no-loop-closing", options->no_loop_closing,
+                   "Keep relocalization but do not close loops (overrides Loop.closing)");
       cmd.add_option("--repeat", *repeats,
                      "Run N times into OUT/run_K and report the min/median/max spread")
           ->check(CLI::PositiveNumber);

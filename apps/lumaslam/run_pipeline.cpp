@@ -56,6 +56,7 @@ int runPipeline(const RunOptions& options) {
   system_options.detector = options.detector;
   if (options.sequential) system_options.sequential = true;
   system_options.vocabulary = options.vocabulary;
+  if (options.no_loop_closing) system_options.loop_closing = false;
   System system(settings, system_options);
 
   std::ofstream timing(options.out / "timing.csv");

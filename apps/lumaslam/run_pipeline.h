@@ -17,6 +17,7 @@ struct RunOptions {
   std::optional<std::size_t> max_frames;
   bool sequential = false;
   std::optional<std::filesystem::path> vocabulary;  // overrides Loop.vocabulary
+  bool no_loop_closing = false;                     // overrides Loop.closing
 };
 
 // Returns the process exit code; throws lumaslam::Error for bad input.

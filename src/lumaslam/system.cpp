@@ -16,6 +16,7 @@
 #include "lumaslam/detect/dynamic_mask.h"
 #include "lumaslam/enhance/enhancer.h"
 #include "lumaslam/io/dataset_reader.h"
+#include "lumaslam/loop/loop_closer.h"
 #include "lumaslam/loop/place_recognition.h"
 #include "lumaslam/mapping/local_mapper.h"
 #include "lumaslam/track/feature_subset.h"
@@ -119,9 +120,28 @@ System::System(const io::Settings& settings, const SystemOptions& options)
 
   const auto camera = frameCameraFrom(settings_, rectifier_.get());
   frame_builder_ = std::make_unique<track::FrameBuilder>(camera, orbSettingsFrom(settings_));
+  const bool loop_closing = places_ && options.loop_closing.value_or(settings_.loop.closing);
+  if (loop_closing && settings_.sensor == io::SensorType::Monocular) {
+    // Monocular loops need a Sim3 correction (scale drift), which is not built yet.
+    spdlog::warn("loop closing is off for monocular (Sim3 loop correction is not implemented)");
+  } else if (loop_closing) {
+    loop::LoopCloserParams loop_params;
+    loop_params.threaded = !sequential_;
+    loop_params.direct_index_levels_up = loop::PlaceRecognition::kDirectIndexLevelsUp;
+    // The mapper exists before the first keyframe reaches the closer.
+    loop_closer_ = std::make_unique<loop::LoopCloser>(
+        map_, places_->vocabulary(), places_->database(), loop_params,
+        [this] { return mapper_->pauseProcessing(); });
+    spdlog::info("loop closing is on");
+  }
   mapping::LocalMapperParams mapper_params;
   mapper_params.threaded = !sequential_;
   if (settings_.sensor == io::SensorType::Monocular) mapper_params.triangulation_neighbours = 20;
+  if (loop_closer_) {
+    mapper_params.on_keyframe_processed = [closer = loop_closer_.get()](const auto& keyframe) {
+      closer->insertKeyFrame(keyframe);
+    };
+  }
   mapper_ = std::make_unique<mapping::LocalMapper>(map_, camera, frame_builder_->pyramid(),
                                                    mapper_params);
   track::TrackerParams tracker_params;
@@ -151,6 +171,7 @@ System::~System() {
 void System::shutdown() {
   if (detector_) detector_->stop();
   if (mapper_) mapper_->shutdown();
+  if (loop_closer_) loop_closer_->shutdown();  // after the mapper: it feeds the closer
 }
 
 System::Images System::prepareImages(const cv::Mat& image, FrameTiming& timing) {
@@ -337,6 +358,7 @@ FrameResult System::track(const SensorFrame& input) {
   if (sequential_) {
     stage = Clock::now();
     mapper_->processPending();
+    if (loop_closer_) loop_closer_->processPending();
     result.timing.mapping = msSince(stage);
   }
   result.timing.total = msSince(start);

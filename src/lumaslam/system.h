@@ -30,8 +30,9 @@ namespace io {
 struct FrameData;
 }
 namespace loop {
+class LoopCloser;
 class PlaceRecognition;
-}
+}  // namespace loop
 namespace mapping {
 class LocalMapper;
 }
@@ -46,6 +47,7 @@ struct SystemOptions {
   std::optional<std::string> detector;
   // Overrides Loop.vocabulary (a vocabulary file for relocalization; see docs/settings.md).
   std::optional<std::filesystem::path> vocabulary;
+  std::optional<bool> loop_closing;  // overrides Loop.closing (needs a vocabulary)
 };
 
 struct FrameTiming {  // milliseconds
@@ -106,6 +108,8 @@ class System {
   // Vocabulary + keyframe database, shared by relocalization and loop closing; null when no
   // vocabulary was given (relocalization off).
   std::shared_ptr<loop::PlaceRecognition> placeRecognition() const { return places_; }
+  // Null when loop closing is off (no vocabulary, Loop.closing 0 or --no-loop-closing).
+  const loop::LoopCloser* loopCloser() const { return loop_closer_.get(); }
   const io::Settings& settings() const { return settings_; }
   // The camera tracking works in (the rectified one for an unrectified stereo pair).
   const track::FrameCamera& frameCamera() const;
@@ -133,6 +137,7 @@ class System {
   bool sequential_ = false;
   std::shared_ptr<map::Map> map_;
   std::shared_ptr<loop::PlaceRecognition> places_;  // the Map's KeyFrameIndex
+  std::unique_ptr<loop::LoopCloser> loop_closer_;   // fed by the local mapper
   std::unique_ptr<enhance::Enhancer> enhancer_;
   std::unique_ptr<enhance::Enhancer> right_enhancer_;   // stereo: the right image's own
   std::unique_ptr<camera::StereoRectifier> rectifier_;  // unrectified stereo pairs only

@@ -278,6 +278,7 @@ LoopSettings readLoop(const KeyReader& in) {
     if (vocabulary->empty()) in.file().invalid("Loop.vocabulary", "must not be empty");
     loop.vocabulary = *vocabulary;
   }
+  loop.closing = in.get<bool>({"Loop.closing"}, loop.closing);
   return loop;
 }
 

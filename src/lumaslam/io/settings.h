@@ -82,6 +82,8 @@ struct LoopSettings {
   // for relocalization; relative paths resolved against the settings file's folder. Empty
   // when not set: relocalization is off.
   std::filesystem::path vocabulary;
+  // Loop.closing: close loops (own thread) when a vocabulary is given (default 1).
+  bool closing = true;
 };
 
 struct Settings {

@@ -12,6 +12,7 @@
 #include "lumaslam/core/pose.h"
 #include "lumaslam/feature/hamming.h"
 #include "lumaslam/loop/keyframe_database.h"
+#include "lumaslam/loop/pose_matching.h"
 #include "lumaslam/loop/vocabulary.h"
 #include "lumaslam/map/feature_set.h"
 #include "lumaslam/map/map.h"
@@ -32,12 +33,7 @@ struct RelocalizerParams {
 };
 
 // The frame to relocalize: its features (with a FeatureGrid), camera and pyramid.
-struct RelocalizationFrame {
-  const map::FeatureSet* features = nullptr;
-  map::PinholeIntrinsics intrinsics;
-  const map::ScalePyramid* pyramid = nullptr;
-  cv::Rect2f bounds;  // where undistorted keypoints can lie (projection search)
-};
+using RelocalizationFrame = MatchingFrame;
 
 struct RelocalizationResult {
   bool success = false;

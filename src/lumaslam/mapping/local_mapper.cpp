@@ -109,6 +109,16 @@ void LocalMapper::run() {
 }
 
 void LocalMapper::process(const std::shared_ptr<map::KeyFrame>& keyframe) {
+  {
+    std::lock_guard processing(processing_mutex_);
+    processLocked(keyframe);
+  }
+  if (params_.on_keyframe_processed && !keyframe->isBad()) {
+    params_.on_keyframe_processed(keyframe);
+  }
+}
+
+void LocalMapper::processLocked(const std::shared_ptr<map::KeyFrame>& keyframe) {
   attachObservations(keyframe);
   cullRecentPoints(keyframe);
   const std::size_t points_before = map_->mapPointCount();

@@ -7,6 +7,7 @@
 #include <atomic>
 #include <condition_variable>
 #include <deque>
+#include <functional>
 #include <list>
 #include <memory>
 #include <mutex>
@@ -27,6 +28,9 @@ struct LocalMapperParams {
   bool bundle_adjustment = true;
   bool keyframe_culling = true;
   double redundancy = 0.9;  // a keyframe whose points are this redundant is culled
+  // Called with every keyframe once it is processed (and not culled), e.g. to feed loop
+  // closing; runs in the mapper's thread with no lock held.
+  std::function<void(const std::shared_ptr<map::KeyFrame>&)> on_keyframe_processed;
 };
 
 class LocalMapper : public track::KeyFrameSink {
@@ -50,10 +54,14 @@ class LocalMapper : public track::KeyFrameSink {
   void shutdown();
 
   std::size_t processedKeyFrames() const { return processed_; }
+  // While the returned lock is held the mapper processes no keyframe (loop correction).
+  // Lock order: outer to Map::updateMutex().
+  std::unique_lock<std::mutex> pauseProcessing() { return std::unique_lock(processing_mutex_); }
 
  private:
   void run();
   void process(const std::shared_ptr<map::KeyFrame>& keyframe);
+  void processLocked(const std::shared_ptr<map::KeyFrame>& keyframe);
   void attachObservations(const std::shared_ptr<map::KeyFrame>& keyframe);
   void cullRecentPoints(const std::shared_ptr<map::KeyFrame>& keyframe);
   void triangulateNewPoints(const std::shared_ptr<map::KeyFrame>& keyframe);
@@ -66,6 +74,7 @@ class LocalMapper : public track::KeyFrameSink {
   std::shared_ptr<const map::ScalePyramid> pyramid_;
   LocalMapperParams params_;
 
+  std::mutex processing_mutex_;  // held while a keyframe is processed
   mutable std::mutex queue_mutex_;
   std::condition_variable queue_changed_;
   std::deque<std::shared_ptr<map::KeyFrame>> queue_;

@@ -1,0 +1,422 @@
+#include "lumaslam/loop/loop_closer.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <set>
+#include <unordered_map>
+#include <unordered_set>
+#include <utility>
+
+#include <spdlog/spdlog.h>
+
+#include "lumaslam/map/keyframe.h"
+#include "lumaslam/map/map_point.h"
+#include "lumaslam/mapping/point_fusion.h"
+#include "lumaslam/optimize/local_ba.h"
+#include "lumaslam/optimize/pose_graph.h"
+
+namespace lumaslam::loop {
+
+namespace {
+
+using KeyFramePtr = std::shared_ptr<map::KeyFrame>;
+using PosesById = std::unordered_map<map::Id, SE3>;
+
+// The map points of a keyframe and its covisible neighbours, each once.
+std::vector<std::shared_ptr<map::MapPoint>> groupPoints(const KeyFramePtr& keyframe) {
+  std::vector<KeyFramePtr> group = keyframe->covisibles();
+  group.push_back(keyframe);
+  std::unordered_set<map::Id> seen;
+  std::vector<std::shared_ptr<map::MapPoint>> points;
+  for (const auto& kf : group) {
+    for (const auto& point : kf->mapPoints()) {
+      if (point && !point->isBad() && seen.insert(point->id()).second) points.push_back(point);
+    }
+  }
+  return points;
+}
+
+optimize::PoseGraphEdge edgeBetween(map::Id i, map::Id j, const SE3& T_i_w, const SE3& T_j_w) {
+  optimize::PoseGraphEdge edge;
+  edge.fromId = i;
+  edge.toId = j;
+  edge.T_i_j = T_i_w * T_j_w.inverse();
+  return edge;
+}
+
+}  // namespace
+
+LoopCloser::LoopCloser(std::shared_ptr<map::Map> map, const Vocabulary& vocabulary,
+                       const KeyFrameDatabase& database, const LoopCloserParams& params,
+                       PauseMapping pause_mapping)
+    : map_(std::move(map)),
+      vocabulary_(vocabulary),
+      database_(database),
+      params_(params),
+      pause_mapping_(std::move(pause_mapping)),
+      detector_(database_, *map_, params.detector) {
+  if (params_.threaded) thread_ = std::thread([this] { run(); });
+}
+
+LoopCloser::~LoopCloser() {
+  shutdown();
+}
+
+void LoopCloser::shutdown() {
+  {
+    std::lock_guard lock(queue_mutex_);
+    stopping_ = true;
+  }
+  queue_changed_.notify_all();
+  if (thread_.joinable()) thread_.join();
+}
+
+void LoopCloser::insertKeyFrame(std::shared_ptr<map::KeyFrame> keyframe) {
+  {
+    std::lock_guard lock(queue_mutex_);
+    queue_.push_back(std::move(keyframe));
+    while (queue_.size() > params_.queue_capacity) queue_.pop_front();
+  }
+  queue_changed_.notify_all();
+}
+
+void LoopCloser::processPending() {
+  while (true) {
+    std::shared_ptr<map::KeyFrame> keyframe;
+    {
+      std::lock_guard lock(queue_mutex_);
+      if (queue_.empty()) return;
+      keyframe = queue_.front();
+      queue_.pop_front();
+    }
+    process(keyframe);
+  }
+}
+
+void LoopCloser::waitUntilIdle() {
+  std::unique_lock lock(queue_mutex_);
+  queue_changed_.wait(lock, [this] { return (queue_.empty() && !busy_) || !thread_.joinable(); });
+}
+
+void LoopCloser::run() {
+  while (true) {
+    std::shared_ptr<map::KeyFrame> keyframe;
+    {
+      std::unique_lock lock(queue_mutex_);
+      queue_changed_.wait(lock, [this] { return stopping_ || !queue_.empty(); });
+      if (queue_.empty()) break;
+      keyframe = queue_.front();
+      queue_.pop_front();
+      busy_ = true;
+    }
+    process(keyframe);
+    {
+      std::lock_guard lock(queue_mutex_);
+      busy_ = false;
+    }
+    queue_changed_.notify_all();
+  }
+}
+
+std::vector<ClosedLoop> LoopCloser::closedLoops() const {
+  std::lock_guard lock(queue_mutex_);
+  return closed_;
+}
+
+std::optional<KeyFrameBow> LoopCloser::bowOf(const map::KeyFrame& keyframe) const {
+  if (auto entry = database_.entry(keyframe.id())) return entry;
+  if (vocabulary_.empty()) return std::nullopt;
+  KeyFrameBow entry;
+  vocabulary_.transform(keyframe.features().descriptors, params_.direct_index_levels_up, entry.bow,
+                        entry.features);
+  return entry;
+}
+
+void LoopCloser::process(const std::shared_ptr<map::KeyFrame>& keyframe) {
+  if (!keyframe || keyframe->isBad()) return;
+  // No loop right after the start or the last loop (ORB-SLAM: 10 keyframes).
+  const auto since =
+      static_cast<long long>(keyframe->id()) - static_cast<long long>(last_loop_keyframe_);
+  if (since < params_.min_keyframes_between_loops) return;
+  const auto detection = detector_.detect(keyframe);
+  if (detection.consistent.empty()) return;
+  const auto match = computeLoop(keyframe, detection.consistent);
+  if (!match) {
+    rejected_ += static_cast<int>(detection.consistent.size());
+    return;
+  }
+  const ClosedLoop closed = correctLoop(*match);
+  spdlog::info("loop closed: keyframe {} -> {}, {} inliers, moved {:.1f} mm / {:.2f} deg",
+               closed.current, closed.loop, closed.inliers, 1000.0 * closed.correction_m,
+               closed.correction_deg);
+  {
+    std::lock_guard lock(queue_mutex_);
+    closed_.push_back(closed);
+  }
+  last_loop_keyframe_ = keyframe->id();
+  detector_.reset();
+  if (params_.global_bundle_adjustment) {
+    abort_global_ba_ = false;
+    globalBundleAdjustment();
+  }
+}
+
+bool LoopCloser::globalBundleAdjustment() {
+  // Snapshot of the whole map (no lock across objects: each accessor copies).
+  const auto keyframes = map_->keyFrames();
+  const auto origin = map_->originKeyFrame();
+  if (keyframes.size() < 2) return false;
+  const auto& k = keyframes.front()->intrinsics();
+  optimize::LocalBAProblem problem;
+  problem.camera = {k.fx, k.fy, k.cx, k.cy, k.bf};
+  PosesById snapshot;
+  for (const auto& kf : keyframes) {
+    if (kf->isBad()) continue;
+    snapshot[kf->id()] = kf->T_c_w();
+    problem.keyFrames.push_back({kf->id(), snapshot[kf->id()], kf == origin});
+  }
+  std::vector<std::shared_ptr<map::MapPoint>> points;
+  for (const auto& point : map_->mapPoints()) {
+    if (point->isBad()) continue;
+    bool observed = false;
+    for (const auto& [kf, index] : point->observations()) {
+      if (!snapshot.contains(kf->id())) continue;
+      const auto i = static_cast<std::size_t>(index);
+      const auto& f = kf->features();
+      optimize::BAObservation obs;
+      obs.keyFrameId = kf->id();
+      obs.pointId = point->id();
+      obs.uv = {f.undistorted[i].x, f.undistorted[i].y};
+      obs.uRight = k.bf > 0 ? f.u_right[i] : -1.0;
+      obs.invSigma2 =
+          kf->pyramid().inv_sigma2[static_cast<std::size_t>(std::max(0, f.keypoints[i].octave))];
+      problem.observations.push_back(obs);
+      observed = true;
+    }
+    if (!observed) continue;
+    problem.points.push_back({point->id(), point->position()});
+    points.push_back(point);
+  }
+  if (problem.observations.empty() || abort_global_ba_) return false;
+  optimize::LocalBAOptions options;
+  options.maxIterations = params_.global_ba_iterations;
+  options.refinementIterations = params_.global_ba_iterations;  // without the outliers
+  options.abort = &abort_global_ba_;
+  const auto result = optimize::optimizeLocalBundle(problem, options);
+  spdlog::info(
+      "global BA after the loop: {} keyframes, {} points, {} iterations, cost {:.4g} -> {:.4g}{}",
+      problem.keyFrames.size(), problem.points.size(), result.iterations, result.initialCost,
+      result.finalCost, result.aborted ? " (aborted)" : "");
+  if (result.aborted) return false;
+
+  std::unique_lock<std::mutex> mapping_paused;
+  if (pause_mapping_) mapping_paused = pause_mapping_();
+  std::lock_guard update(map_->updateMutex());
+  // World correction of each adjusted keyframe: X' = T_w_c(new) * T_c_w(snapshot) * X.
+  std::unordered_map<map::Id, SE3> correction;
+  for (std::size_t v = 0; v < problem.keyFrames.size(); ++v) {
+    const map::Id id = problem.keyFrames[v].id;
+    correction[id] = result.T_c_w[v].inverse() * snapshot[id];
+  }
+  for (const auto& kf : map_->keyFrames()) {
+    if (kf->isBad()) continue;
+    if (const auto own = correction.find(kf->id()); own != correction.end()) {
+      kf->setPose((own->second * kf->T_w_c()).inverse());
+      continue;
+    }
+    // Added during the adjustment: follow the nearest adjusted ancestor.
+    std::size_t steps = 0;  // bounded even if the spanning tree were broken
+    for (auto ancestor = kf->parent(); ancestor && steps < keyframes.size() + 1;
+         ancestor = ancestor->parent(), ++steps) {
+      if (const auto found = correction.find(ancestor->id()); found != correction.end()) {
+        kf->setPose((found->second * kf->T_w_c()).inverse());
+        correction[kf->id()] = found->second;
+        break;
+      }
+    }
+  }
+  std::unordered_set<map::Id> adjusted;
+  for (std::size_t p = 0; p < points.size(); ++p) {
+    points[p]->setPosition(result.X_w[p]);
+    adjusted.insert(points[p]->id());
+  }
+  for (const auto& point : map_->mapPoints()) {
+    if (point->isBad()) continue;
+    if (!adjusted.contains(point->id())) {
+      const auto found = correction.find(point->referenceKeyFrameId());
+      if (found == correction.end()) continue;
+      point->setPosition(found->second * point->position());
+    }
+    point->updateNormalAndDepth();
+  }
+  return true;
+}
+
+std::optional<LoopMatch> LoopCloser::computeLoop(
+    const std::shared_ptr<map::KeyFrame>& current,
+    const std::vector<std::shared_ptr<map::KeyFrame>>& candidates) const {
+  const auto current_bow = bowOf(*current);
+  if (!current_bow || !current->features().grid) return std::nullopt;
+  const MatchingFrame frame = matchingFrameOf(*current);
+  for (const auto& candidate : candidates) {
+    if (!candidate || candidate->isBad() || candidate == current) continue;
+    const auto candidate_bow = bowOf(*candidate);
+    if (!candidate_bow) continue;
+    PointSlots slots =
+        searchByBow(*candidate, candidate_bow->features, current->features(), current_bow->features,
+                    params_.bow_ratio, params_.bow_max_distance);
+    if (countMatches(slots) < params_.min_bow_matches) continue;
+    SE3 T_c_w;
+    if (!solvePnpRansac(frame, params_.pnp, slots, T_c_w)) continue;
+    if (refinePose(frame, slots, T_c_w) < params_.pnp.min_inliers) continue;
+    // Guided matching against the whole loop neighbourhood with the loop pose, refine again.
+    searchByProjection(frame, groupPoints(candidate), {}, T_c_w, params_.projection_radius_px,
+                       params_.bow_max_distance, slots);
+    const int inliers = refinePose(frame, slots, T_c_w);
+    if (inliers < params_.min_inliers) continue;
+    return LoopMatch{current, candidate, T_c_w, std::move(slots), inliers};
+  }
+  return std::nullopt;
+}
+
+ClosedLoop LoopCloser::correctLoop(const LoopMatch& match) {
+  std::unique_lock<std::mutex> mapping_paused;
+  if (pause_mapping_) mapping_paused = pause_mapping_();
+  std::lock_guard update(map_->updateMutex());
+  const KeyFramePtr& current = match.current;
+
+  // 1. The current keyframe and its neighbours follow the loop transform (ORB-SLAM's
+  //    CorrectedSim3: T_i_w' = T_i_w * T_w_cur * T_cur_w').
+  current->updateConnections();
+  std::vector<KeyFramePtr> group = current->covisibles();
+  group.push_back(current);
+  const SE3 T_w_cur = current->T_w_c();
+  PosesById uncorrected;
+  PosesById corrected;
+  for (const auto& kf : group) {
+    uncorrected[kf->id()] = kf->T_c_w();
+    corrected[kf->id()] = kf->T_c_w() * T_w_cur * match.T_c_w;
+  }
+  ClosedLoop closed;
+  closed.current = current->id();
+  closed.loop = match.loop->id();
+  closed.inliers = match.inliers;
+  const SE3 move = T_w_cur * match.T_c_w;
+  closed.correction_m = move.translation().norm();
+  closed.correction_deg = Eigen::AngleAxisd(move.linear()).angle() * 180.0 / M_PI;
+
+  std::unordered_map<map::Id, map::Id> corrected_by;  // point -> keyframe it moved with
+  std::vector<std::shared_ptr<map::MapPoint>> moved;
+  for (const auto& kf : group) {
+    const SE3 to_corrected = corrected[kf->id()].inverse() * uncorrected[kf->id()];
+    for (const auto& point : kf->mapPoints()) {
+      if (!point || point->isBad() || corrected_by.contains(point->id())) continue;
+      point->setPosition(to_corrected * point->position());
+      corrected_by[point->id()] = kf->id();
+      moved.push_back(point);
+    }
+    kf->setPose(corrected[kf->id()]);
+  }
+  for (const auto& point : moved) point->updateNormalAndDepth();
+
+  // 2. Loop fusion: the current keyframe's matched features take the loop points, then the
+  //    loop neighbourhood's points are fused into every keyframe of the group.
+  std::map<map::Id, std::set<map::Id>> neighbours_before;
+  for (const auto& kf : group) {
+    for (const auto& n : kf->covisibles()) neighbours_before[kf->id()].insert(n->id());
+  }
+  for (std::size_t i = 0; i < match.points.size(); ++i) {
+    const auto& loop_point = match.points[i];
+    if (!loop_point || loop_point->isBad()) continue;
+    const auto existing = current->mapPoint(i);
+    if (existing && !existing->isBad()) {
+      if (existing != loop_point) map_->replaceMapPoint(existing, loop_point);
+    } else if (loop_point->featureIndexIn(current->id()) < 0) {
+      current->setMapPoint(i, loop_point);
+      loop_point->addObservation(current, static_cast<int>(i));
+      loop_point->computeDistinctiveDescriptor();
+    }
+  }
+  const auto loop_points = groupPoints(match.loop);
+  for (const auto& kf : group) {
+    mapping::fusePointsInto(*map_, kf, loop_points, params_.fusion_radius_px);
+  }
+  // New links the fusion created between the group and the loop side.
+  std::set<std::pair<map::Id, map::Id>> loop_links;
+  std::unordered_set<map::Id> group_ids;
+  for (const auto& kf : group) group_ids.insert(kf->id());
+  for (const auto& kf : group) {
+    kf->updateConnections();
+    for (const auto& n : kf->covisibles()) {
+      if (group_ids.contains(n->id()) || neighbours_before[kf->id()].contains(n->id())) continue;
+      const bool the_loop = kf == current && n == match.loop;
+      if (!the_loop && kf->weight(n->id()) < params_.strong_covisibility) continue;
+      loop_links.insert({kf->id(), n->id()});
+    }
+  }
+  loop_links.insert({current->id(), match.loop->id()});
+
+  // 3. Essential graph (ORB-SLAM's OptimizeEssentialGraph), loop keyframe fixed. Loop links
+  //    are measured with the corrected poses, every other edge with the poses before the loop.
+  const auto keyframes = map_->keyFrames();
+  optimize::PoseGraphProblem problem;
+  PosesById initial;
+  PosesById before_loop;
+  for (const auto& kf : keyframes) {
+    if (kf->isBad()) continue;
+    const SE3 T = kf->T_c_w();
+    initial[kf->id()] = T;
+    before_loop[kf->id()] = uncorrected.contains(kf->id()) ? uncorrected[kf->id()] : T;
+    problem.vertices.push_back({kf->id(), T, kf == match.loop});
+  }
+  std::set<std::pair<map::Id, map::Id>> added;
+  const auto add_edge = [&](map::Id i, map::Id j, const PosesById& poses) {
+    if (i == j || !poses.contains(i) || !poses.contains(j)) return;
+    if (!added.insert({std::min(i, j), std::max(i, j)}).second) return;
+    problem.edges.push_back(edgeBetween(i, j, poses.at(i), poses.at(j)));
+  };
+  for (const auto& [i, j] : loop_links) add_edge(i, j, initial);
+  for (const auto& kf : keyframes) {
+    if (kf->isBad()) continue;
+    if (const auto parent = kf->parent()) add_edge(kf->id(), parent->id(), before_loop);
+    for (const auto& other : kf->loopEdges()) add_edge(kf->id(), other->id(), before_loop);
+    for (const auto& n : kf->covisiblesWithMinWeight(params_.strong_covisibility)) {
+      add_edge(kf->id(), n->id(), before_loop);
+    }
+  }
+  optimize::PoseGraphOptions options;
+  options.maxIterations = params_.pose_graph_iterations;
+  const auto result = optimize::optimizePoseGraph(problem, options);
+
+  // 4. Keyframes take the optimised poses; points move with the keyframe that corrected
+  //    them, or their reference keyframe (the first observer if that one is gone).
+  PosesById optimised;
+  for (std::size_t v = 0; v < problem.vertices.size(); ++v) {
+    optimised[problem.vertices[v].id] = result.T_c_w[v];
+  }
+  for (const auto& kf : keyframes) {
+    if (optimised.contains(kf->id())) kf->setPose(optimised[kf->id()]);
+  }
+  for (const auto& point : map_->mapPoints()) {
+    if (point->isBad()) continue;
+    map::Id anchor = point->referenceKeyFrameId();
+    if (const auto by = corrected_by.find(point->id()); by != corrected_by.end()) {
+      anchor = by->second;
+    }
+    if (!optimised.contains(anchor)) {
+      const auto observations = point->observations();
+      if (observations.empty() || !optimised.contains(observations.front().first->id())) continue;
+      anchor = observations.front().first->id();
+    }
+    const SE3 shift = optimised[anchor].inverse() * initial[anchor];
+    point->setPosition(shift * point->position());
+    point->updateNormalAndDepth();
+  }
+
+  current->addLoopEdge(match.loop);
+  match.loop->addLoopEdge(current);
+  return closed;
+}
+
+}  // namespace lumaslam::loop

@@ -1,0 +1,132 @@
+#pragma once
+// Loop closing (ORB-SLAM's LoopClosing for stereo / RGB-D, where scale is observable and the
+// loop transform is an SE3): for every keyframe local mapping has processed,
+//  1. detect consistent loop candidates (LoopDetector);
+//  2. compute the loop (computeLoop): SearchByBoW between the keyframe and each candidate,
+//     EPnP + RANSAC on the keyframe's features against the candidate's map points, pose-only
+//     refinement, guided projection matching of the points of the candidate and its
+//     covisible keyframes, a second refinement; accepted with >= min_inliers;
+//  3. correct the map (correctLoop), with local mapping paused and the map's update mutex
+//     held: move the keyframe and its covisible neighbours (and their points) by the loop
+//     correction, fuse the duplicated points, optimise the essential graph (spanning tree,
+//     strong covisibility and loop edges) with optimize::optimizePoseGraph, then move every
+//     other point with the keyframe it was corrected by (or its reference keyframe).
+//  4. optionally a global bundle adjustment of every keyframe and point (origin fixed), solved
+//     on a snapshot without locks and written back with mapping paused; keyframes added
+//     meanwhile follow their nearest ancestor in the spanning tree (ORB-SLAM's RunGlobalBA).
+//     It runs in the closer's thread and stops early on abortGlobalBundleAdjustment().
+// A rejected candidate leaves the map untouched.
+#include <atomic>
+#include <condition_variable>
+#include <deque>
+#include <functional>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <thread>
+#include <vector>
+
+#include "lumaslam/feature/hamming.h"
+#include "lumaslam/loop/keyframe_database.h"
+#include "lumaslam/loop/loop_detector.h"
+#include "lumaslam/loop/pose_matching.h"
+#include "lumaslam/loop/vocabulary.h"
+#include "lumaslam/map/map.h"
+
+namespace lumaslam::loop {
+
+struct LoopCloserParams {
+  bool threaded = true;
+  std::size_t queue_capacity = 32;       // oldest keyframes are dropped beyond this
+  int min_keyframes_between_loops = 10;  // ORB-SLAM: 10
+  LoopDetectorParams detector;
+  int direct_index_levels_up = 4;
+  float bow_ratio = 0.75F;
+  int bow_max_distance = feature::kThLow;
+  int min_bow_matches = 20;  // ORB-SLAM: 20
+  PnpRansacParams pnp{300, 4.0F, 15};
+  float projection_radius_px = 10.0F;  // guided matching window (ORB-SLAM: 10)
+  int min_inliers = 40;                // ORB-SLAM: 40
+  float fusion_radius_px = 4.0F;       // SearchAndFuse window (ORB-SLAM: 4)
+  int strong_covisibility = 100;       // essential-graph covisibility edges (ORB-SLAM: 100)
+  int pose_graph_iterations = 20;
+  bool global_bundle_adjustment = true;
+  int global_ba_iterations = 30;
+};
+
+struct LoopMatch {
+  std::shared_ptr<map::KeyFrame> current;
+  std::shared_ptr<map::KeyFrame> loop;
+  SE3 T_c_w = SE3::Identity();  // the current keyframe's pose in the loop keyframe's map
+  PointSlots points;            // per feature of `current`: the matched loop map point (inliers)
+  int inliers = 0;
+};
+
+struct ClosedLoop {
+  map::Id current = 0;
+  map::Id loop = 0;
+  int inliers = 0;
+  double correction_m = 0.0;  // how far the current keyframe moved
+  double correction_deg = 0.0;
+};
+
+class LoopCloser {
+ public:
+  // Pauses local mapping while the map is corrected: returns a lock the mapper must hold
+  // while it processes a keyframe (outer to Map::updateMutex). Empty: nothing to pause.
+  using PauseMapping = std::function<std::unique_lock<std::mutex>()>;
+
+  // Keeps references to the vocabulary and database: both must outlive the closer.
+  LoopCloser(std::shared_ptr<map::Map> map, const Vocabulary& vocabulary,
+             const KeyFrameDatabase& database, const LoopCloserParams& params = {},
+             PauseMapping pause_mapping = {});
+  ~LoopCloser();
+  LoopCloser(const LoopCloser&) = delete;
+  LoopCloser& operator=(const LoopCloser&) = delete;
+
+  // Queues a keyframe local mapping has finished with.
+  void insertKeyFrame(std::shared_ptr<map::KeyFrame> keyframe);
+  // Sequential mode: handle every queued keyframe now, in the caller's thread.
+  void processPending();
+  // Threaded mode: block until the queue is empty and the closer idle.
+  void waitUntilIdle();
+  // Stops and joins the thread (idempotent); queued keyframes are handled first.
+  void shutdown();
+
+  // The steps, public for tests. computeLoop never writes to the map.
+  std::optional<LoopMatch> computeLoop(
+      const std::shared_ptr<map::KeyFrame>& current,
+      const std::vector<std::shared_ptr<map::KeyFrame>>& candidates) const;
+  ClosedLoop correctLoop(const LoopMatch& match);
+  // Returns false if there was nothing to adjust or it was aborted (map unchanged then).
+  bool globalBundleAdjustment();
+  void abortGlobalBundleAdjustment() { abort_global_ba_ = true; }
+
+  std::vector<ClosedLoop> closedLoops() const;
+  int rejectedCandidates() const { return rejected_; }
+
+ private:
+  void run();
+  void process(const std::shared_ptr<map::KeyFrame>& keyframe);
+  std::optional<KeyFrameBow> bowOf(const map::KeyFrame& keyframe) const;
+
+  std::shared_ptr<map::Map> map_;
+  const Vocabulary& vocabulary_;
+  const KeyFrameDatabase& database_;
+  LoopCloserParams params_;
+  PauseMapping pause_mapping_;
+  LoopDetector detector_;
+  map::Id last_loop_keyframe_ = 0;
+
+  mutable std::mutex queue_mutex_;
+  std::condition_variable queue_changed_;
+  std::deque<std::shared_ptr<map::KeyFrame>> queue_;
+  bool busy_ = false;
+  bool stopping_ = false;
+  std::vector<ClosedLoop> closed_;
+  std::atomic<int> rejected_{0};
+  std::atomic<bool> abort_global_ba_{false};
+  std::thread thread_;
+};
+
+}  // namespace lumaslam::loop

@@ -1,0 +1,167 @@
+// Loop closing on a map built from a synthetic room with injected drift: one lap of 36
+// keyframes (10 degrees apart), then the start of a second lap from a renderer with other
+// viewpoints (9 degrees apart). Consecutive keyframes share points (fused with ground-truth
+// poses), the laps do not: only place recognition can connect them. Then every keyframe and
+// its points are moved by a drift growing along the trajectory (yaw + translation), as
+// odometry drifts. The loop closer must find the loop, correct it, and bring the keyframes
+// closer to the ground truth; a wrong candidate must be rejected without touching the map.
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <numeric>
+
+#include <gtest/gtest.h>
+
+#include "loop_test_map.h"
+
+#include "lumaslam/loop/loop_closer.h"
+#include "lumaslam/loop/vocabulary_training.h"
+#include "lumaslam/mapping/point_fusion.h"
+
+namespace {
+
+using namespace lumaslam;
+
+constexpr int kLapFrames = 36;
+constexpr int kSecondLapFrames = 40;
+constexpr int kSecondLapKeyFrames = 7;                          // 9 .. 63 degrees
+constexpr double kYawDriftDeg = 0.25;                           // per keyframe
+const Eigen::Vector3d kTranslationDrift(0.004, -0.003, 0.001);  // metres per keyframe
+
+SE3 driftAt(int k) {
+  SE3 drift = SE3::Identity();
+  drift.linear() = Eigen::AngleAxisd(k * kYawDriftDeg * M_PI / 180.0, Eigen::Vector3d::UnitZ())
+                       .toRotationMatrix();
+  drift.translation() = k * kTranslationDrift;
+  return drift;
+}
+
+struct DriftedLoopMap {
+  synth::SequenceRenderer lap{synth::findPreset("loop-rgbd"), kLapFrames, 3};
+  synth::SequenceRenderer second_lap{synth::findPreset("loop-rgbd"), kSecondLapFrames, 3};
+  track::FrameBuilder builder{test::rgbdCameraOf(lap.rig()), feature::OrbSettings{}};
+  std::shared_ptr<map::Map> map = std::make_shared<map::Map>();
+  loop::Vocabulary vocabulary;
+  loop::KeyFrameDatabase database;
+  std::vector<std::shared_ptr<map::KeyFrame>> keyframes;
+  std::vector<SE3> truth;  // T_w_c per keyframe
+
+  DriftedLoopMap() {
+    std::vector<track::Frame> frames;
+    for (int i = 0; i < kLapFrames; ++i) {
+      frames.push_back(test::buildRgbdFrame(builder, lap, i));
+      truth.push_back(lap.render(i).cam0.T_w_c);
+    }
+    for (int i = 1; i <= kSecondLapKeyFrames; ++i) {
+      frames.push_back(test::buildRgbdFrame(builder, second_lap, i));
+      truth.push_back(second_lap.render(i).cam0.T_w_c);
+    }
+    std::vector<cv::Mat> descriptors;
+    for (const auto& f : frames) descriptors.push_back(f.features->descriptors);
+    loop::TrainingParams params;
+    params.depth = 4;
+    vocabulary = loop::trainVocabulary(descriptors, params);
+
+    for (std::size_t k = 0; k < frames.size(); ++k) {
+      auto keyframe = test::addKeyFrameWithPoints(*map, builder, frames[k], truth[k]);
+      // Share points with the two previous keyframes (ground-truth poses: exact projections).
+      for (std::size_t back = 1; back <= 2 && back <= k; ++back) {
+        mapping::fusePointsInto(*map, keyframe, keyframes[k - back]->mapPoints());
+      }
+      keyframe->updateConnections();
+      keyframes.push_back(keyframe);
+      loop::KeyFrameBow entry;
+      vocabulary.transform(frames[k].features->descriptors, 4, entry.bow, entry.features);
+      database.add(keyframe->id(), std::move(entry));
+    }
+    for (const auto& kf : keyframes) kf->updateConnections();
+    // Drift: keyframe k is seen where drift(k) puts it; points move with their reference.
+    for (const auto& point : map->mapPoints()) {
+      point->setPosition(driftAt(static_cast<int>(point->referenceKeyFrameId())) *
+                         point->position());
+    }
+    for (std::size_t k = 0; k < keyframes.size(); ++k) {
+      keyframes[k]->setPose((driftAt(static_cast<int>(k)) * truth[k]).inverse());
+    }
+    for (const auto& point : map->mapPoints()) point->updateNormalAndDepth();
+  }
+
+  // Root mean square distance of the keyframe centres to the ground truth (the first keyframe
+  // carries no drift, so the frames agree without alignment).
+  double keyframeRmse() const {
+    double sum = 0.0;
+    for (std::size_t k = 0; k < keyframes.size(); ++k) {
+      sum += (keyframes[k]->center() - truth[k].translation()).squaredNorm();
+    }
+    return std::sqrt(sum / static_cast<double>(keyframes.size()));
+  }
+};
+
+loop::LoopCloserParams sequentialParams() {
+  loop::LoopCloserParams params;
+  params.threaded = false;
+  return params;
+}
+
+TEST(LoopCloser, DetectsAndClosesTheLoopTowardsGroundTruth) {
+  DriftedLoopMap world;
+  const double before = world.keyframeRmse();
+  loop::LoopCloser closer(world.map, world.vocabulary, world.database, sequentialParams());
+  for (const auto& kf : world.keyframes) {
+    closer.insertKeyFrame(kf);
+    closer.processPending();
+  }
+  const auto loops = closer.closedLoops();
+  ASSERT_EQ(loops.size(), 1U) << closer.rejectedCandidates() << " candidates rejected";
+  const auto& loop = loops.front();
+  // The loop is closed from the second lap to the start of the first.
+  EXPECT_GE(loop.current, static_cast<map::Id>(kLapFrames));
+  EXPECT_LE(loop.loop, 8U);
+  EXPECT_GE(loop.inliers, 40);
+  const double after = world.keyframeRmse();
+  std::printf(
+      "loop %llu -> %llu: %d inliers, correction %.1f mm %.2f deg; keyframe RMSE %.1f mm "
+      "before, %.1f mm after\n",
+      static_cast<unsigned long long>(loop.current), static_cast<unsigned long long>(loop.loop),
+      loop.inliers, 1000.0 * loop.correction_m, loop.correction_deg, 1000.0 * before,
+      1000.0 * after);
+  // The injected drift at the current keyframe is what the loop corrects.
+  const SE3 drift = driftAt(static_cast<int>(loop.current));
+  EXPECT_NEAR(loop.correction_deg, Eigen::AngleAxisd(drift.linear()).angle() * 180.0 / M_PI, 1.0);
+  EXPECT_LT(after, 0.5 * before);
+  // The loop keyframes are linked in the essential graph and now share points.
+  const auto current = world.map->keyFrame(loop.current);
+  const auto loop_kf = world.map->keyFrame(loop.loop);
+  ASSERT_TRUE(current && loop_kf);
+  const auto edges = current->loopEdges();
+  EXPECT_TRUE(
+      std::any_of(edges.begin(), edges.end(), [&](const auto& kf) { return kf == loop_kf; }));
+  EXPECT_GE(current->weight(loop.loop), map::KeyFrame::kMinCovisibilityWeight);
+}
+
+TEST(LoopCloser, RejectsAWrongPlaceWithoutChangingTheMap) {
+  DriftedLoopMap world;
+  loop::LoopCloser closer(world.map, world.vocabulary, world.database, sequentialParams());
+  std::vector<SE3> poses;
+  for (const auto& kf : world.keyframes) poses.push_back(kf->T_c_w());
+  const std::size_t points = world.map->mapPointCount();
+  // The last keyframe (second lap, ~63 degrees) against the far side of the room.
+  const auto current = world.keyframes.back();
+  const auto far_side = world.keyframes[kLapFrames / 2 + 2];
+  EXPECT_FALSE(closer.computeLoop(current, {far_side}).has_value());
+  EXPECT_FALSE(closer.computeLoop(current, {}).has_value());
+  EXPECT_FALSE(closer.computeLoop(current, {current}).has_value());
+  for (std::size_t k = 0; k < poses.size(); ++k) {
+    EXPECT_TRUE(world.keyframes[k]->T_c_w().isApprox(poses[k])) << "keyframe " << k;
+  }
+  EXPECT_EQ(world.map->mapPointCount(), points);
+  // While the right place is found from the same keyframe.
+  const auto match = closer.computeLoop(current, {world.keyframes[6]});
+  ASSERT_TRUE(match.has_value());
+  EXPECT_GE(match->inliers, 40);
+  // In the loop keyframe's map, which carries that keyframe's drift.
+  const SE3 error = match->T_c_w * driftAt(6) * world.truth.back();
+  EXPECT_LT(error.translation().norm(), 0.05);
+}
+
+}  // namespace
