@@ -120,6 +120,7 @@ TEST(SynthPeople, BadPersonImagesAreClearErrors) {
   bad_alpha.alpha = cv::Mat(5, 5, CV_8U);
   EXPECT_THROW(SequenceRenderer(preset, 5, 1, withPeople({bad_alpha})), Error);
   EXPECT_THROW(loadPersonImages("/nonexistent/people"), Error);
+  EXPECT_THROW(cropPersonImages(cv::Mat(), {{0, 0, 1, 2}}), Error);
   // Crops: clipped to the image, boxes wider than tall skipped.
   const cv::Mat image(100, 200, CV_8UC3, cv::Scalar(1, 2, 3));
   const auto crops = cropPersonImages(image, {{150, 10, 80, 90}, {0, 0, 120, 60}});
@@ -150,7 +151,13 @@ TEST(SynthPeople, YoloFindsPhotoWalkersFarMoreOftenThanProceduralOnes) {
   const double procedural = yoloRecall({}, procedural_people);
   SynthOptions photo_options;
   photo_options.people = labelledPeople();
-  ASSERT_EQ(photo_options.people.size(), 5u);  // 4 in bus.jpg, the upright one in zidane.jpg
+  ASSERT_EQ(photo_options.people.size(), 5u);        // 4 in bus.jpg, the upright one in zidane.jpg
+  for (const auto& person : photo_options.people) {  // GrabCut cut a person out of each box
+    ASSERT_EQ(person.alpha.size(), person.image.size());
+    const double fill = cv::countNonZero(person.alpha) / static_cast<double>(person.alpha.total());
+    EXPECT_GT(fill, 0.3);
+    EXPECT_LT(fill, 0.9);
+  }
   const double photo = yoloRecall(photo_options, photo_people);
   std::printf("YOLOv5n-320 person recall: procedural %.3f of %d, photo %.3f of %d\n", procedural,
               procedural_people, photo, photo_people);
