@@ -9,12 +9,12 @@
 #include <opencv2/imgproc.hpp>
 
 #include "lumaslam/core/error.h"
-#include "lumaslam/detect/box_labels.h"
 #include "lumaslam/detect/detection_eval.h"
 #include "lumaslam/detect/yolo_detector.h"
 #include "lumaslam/synth/person_image.h"
 #include "lumaslam/synth/sequence.h"
 #include "test_paths.h"
+#include "test_people.h"
 
 namespace lumaslam::synth {
 namespace {
@@ -42,20 +42,6 @@ SynthOptions withPeople(std::vector<PersonImage> people) {
   options.motion_blur = false;  // blur would smear walker colour over its neighbours
   options.moving_boxes = 0;     // the mask holds walkers only
   return options;
-}
-
-// The labelled people of ../shared/data (bus.jpg, zidane.jpg) as crops.
-std::vector<PersonImage> labelledPeople() {
-  std::vector<PersonImage> people;
-  for (const auto& [image, labels] :
-       detect::readBoxList(test::dataDir() / "labels" / "person_boxes.txt")) {
-    std::vector<cv::Rect> boxes;
-    for (const auto& label : labels)
-      if (label.class_name == "person") boxes.push_back(label.box);
-    const auto crops = cropPersonImages(cv::imread((test::dataDir() / image).string()), boxes);
-    people.insert(people.end(), crops.begin(), crops.end());
-  }
-  return people;
 }
 
 TEST(SynthPeople, PhotoWalkersAreDeterministicAndReplaceTheProceduralOnes) {
@@ -150,7 +136,7 @@ TEST(SynthPeople, YoloFindsPhotoWalkersFarMoreOftenThanProceduralOnes) {
   int procedural_people = 0, photo_people = 0;
   const double procedural = yoloRecall({}, procedural_people);
   SynthOptions photo_options;
-  photo_options.people = labelledPeople();
+  photo_options.people = test::labelledPeople();
   ASSERT_EQ(photo_options.people.size(), 5u);        // 4 in bus.jpg, the upright one in zidane.jpg
   for (const auto& person : photo_options.people) {  // GrabCut cut a person out of each box
     ASSERT_EQ(person.alpha.size(), person.image.size());
