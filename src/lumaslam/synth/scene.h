@@ -85,11 +85,11 @@ constexpr float kLightmapCell = 0.1f;
 // v: metres above the floor).
 bool insideWalkerSilhouette(float u, float v, float height, float gait_phase);
 
-// Whether billboard point (u, v) (as above) is on walker w, and if so its texture coordinates
-// (metres from the texture's top-left corner; texel is left alone when not). Procedural walkers use
-// the silhouette; photo walkers the photo's alpha (or whole rectangle), leaning a little with the
-// gait.
-constexpr float kPhotoWalkerLean = 0.02f;  // photo walkers' head sways +- this x height
+// Photo walkers lean by up to this fraction of their height with the gait (head moves most).
+constexpr float kPhotoWalkerLean = 0.02f;
+
+// Texture coordinates (metres from the texture's top-left corner) of a point on a walker, see
+// Scene::walkerCovers.
 struct WalkerTexel {
   float u = 0.0f, v = 0.0f;
 };
@@ -102,7 +102,9 @@ class Scene {
   SceneSnapshot at(double t, const Eigen::Vector3d& viewer) const;
 
   const MipTexture& texture(int index) const { return textures_[static_cast<size_t>(index)]; }
-  // See WalkerTexel; used by the renderer for every ray that crosses a walker's plane.
+  // Whether billboard point (u, v) (as in insideWalkerSilhouette) is on walker w, and if so
+  // its texture coordinates (texel is left alone when not). Procedural walkers use the
+  // silhouette; photo walkers the photo's alpha (or whole rectangle), leaning with the gait.
   bool walkerCovers(const WalkerInstance& w, float u, float v, WalkerTexel& texel) const;
   // Class name of a dynamic object id (1-based): "person" for walkers, "box" for moving boxes.
   const std::string& objectClass(std::uint8_t object_id) const;
