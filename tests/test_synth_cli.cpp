@@ -54,3 +54,26 @@ TEST(SynthCli, BadArgumentsFailWithAClearMessage) {
             0);
   EXPECT_NE(readText(log).find("missing"), std::string::npos) << readText(log);
 }
+
+TEST(SynthCli, PeopleImagesTextureTheWalkersFromABoxList) {
+  lumaslam::test::TempDir dir("synth_cli_people");
+  const fs::path log = dir.path() / "log.txt";
+  const fs::path labels = lumaslam::test::dataDir() / "labels" / "person_boxes.txt";
+  const std::string common = " --preset walking-xyz-rgbd --frames 3 --seed 2";
+  ASSERT_EQ(run("synth " + (dir.path() / "photo").string() + common + " --people-images " +
+                    labels.string(),
+                log),
+            0)
+      << readText(log);
+  ASSERT_EQ(run("synth " + (dir.path() / "plain").string() + common, log), 0) << readText(log);
+  EXPECT_NE(readText(dir.path() / "photo/detections.txt").find("person"), std::string::npos);
+  EXPECT_EQ(readText(dir.path() / "photo/rgb.txt"), readText(dir.path() / "plain/rgb.txt"));
+  EXPECT_NE(readText(dir.path() / "photo/detections.txt"),
+            readText(dir.path() / "plain/detections.txt"));  // photo walkers have their own shape
+
+  EXPECT_NE(run("synth " + (dir.path() / "x").string() + common + " --people-images " +
+                    (dir.path() / "nobody").string(),
+                log),
+            0);
+  EXPECT_NE(readText(log).find("nobody"), std::string::npos) << readText(log);
+}

@@ -7,9 +7,13 @@
 #include <string>
 #include <vector>
 
+#include <opencv2/imgcodecs.hpp>
+
 #include "command_registry.h"
 #include "lumaslam/core/error.h"
+#include "lumaslam/detect/box_labels.h"
 #include "lumaslam/synth/dataset_writer.h"
+#include "lumaslam/synth/person_image.h"
 #include "lumaslam/synth/preset.h"
 #include "lumaslam/synth/sequence.h"
 
@@ -27,7 +31,41 @@ struct SynthCommandOptions {
   bool no_noise = false;
   bool list = false;
   std::vector<std::filesystem::path> textures;
+  std::filesystem::path people;
 };
+
+// An image named in a box list, relative to the list's folder or one of its ancestors
+// (shared/data/labels/person_boxes.txt names its images relative to shared/data).
+std::filesystem::path resolveListedImage(const std::filesystem::path& list,
+                                         const std::string& image) {
+  for (auto dir = std::filesystem::absolute(list).parent_path(); !dir.empty();
+       dir = dir.parent_path()) {
+    if (std::filesystem::exists(dir / image)) return dir / image;
+    if (dir == dir.parent_path()) break;
+  }
+  lumaslam::fail("{}: image '{}' not found next to the list or in a folder above it", list.string(),
+                 image);
+}
+
+// --people-images: a box list (*.txt, "image class x1 y1 x2 y2") whose "person" boxes are
+// cropped, or an image file / folder of images used whole.
+std::vector<lumaslam::synth::PersonImage> loadPeople(const std::filesystem::path& path) {
+  if (path.extension() != ".txt") return lumaslam::synth::loadPersonImages(path);
+  std::vector<lumaslam::synth::PersonImage> people;
+  for (const auto& [image, labels] : lumaslam::detect::readBoxList(path)) {
+    std::vector<cv::Rect> boxes;
+    for (const auto& label : labels)
+      if (label.class_name == "person") boxes.push_back(label.box);
+    if (boxes.empty()) continue;
+    const auto file = resolveListedImage(path, image);
+    const cv::Mat bgr = cv::imread(file.string(), cv::IMREAD_COLOR);
+    if (bgr.empty()) lumaslam::fail("{}: cannot read this image", file.string());
+    const auto crops = lumaslam::synth::cropPersonImages(bgr, boxes);
+    people.insert(people.end(), crops.begin(), crops.end());
+  }
+  if (people.empty()) lumaslam::fail("{}: no person box in this list", path.string());
+  return people;
+}
 
 int runSynth(const SynthCommandOptions& o) {
   using namespace lumaslam::synth;
@@ -45,6 +83,7 @@ int runSynth(const SynthCommandOptions& o) {
   options.motion_blur = !o.no_blur;
   options.sensor_noise = !o.no_noise;
   options.texture_images = o.textures;
+  if (!o.people.empty()) options.people = loadPeople(o.people);
   writeSequence(o.out, o.preset, o.frames, o.seed, options);
   return 0;
 }
@@ -69,6 +108,10 @@ const bool registered = lumaslam::cli::registerCommand(
       cmd.add_flag("--no-blur", o->no_blur, "Disable motion blur");
       cmd.add_flag("--no-noise", o->no_noise, "Disable sensor noise");
       cmd.add_option("--texture", o->textures, "Image file(s) to use as posters in the scene");
+      cmd.add_option("--people-images", o->people,
+                     "Texture the walkers from person photos: an image, a folder of person "
+                     "crops, or a box list (*.txt: image class x1 y1 x2 y2) whose person "
+                     "boxes are cropped");
       return [o] { return runSynth(*o); };
     });
 

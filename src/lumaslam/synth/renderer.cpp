@@ -47,7 +47,8 @@ std::array<Eigen::Vector3f, 8> corners(const BoxInstance& box) {
 }
 
 std::array<Eigen::Vector3f, 4> corners(const WalkerInstance& w) {
-  const Eigen::Vector3f half = w.right * (w.width * 0.5f);
+  const float lean = w.photo >= 0 ? kPhotoWalkerLean * w.height : 0.0f;
+  const Eigen::Vector3f half = w.right * (w.width * 0.5f + lean);
   const Eigen::Vector3f up(0.0f, 0.0f, w.height);
   return {w.base - half, w.base + half, w.base - half + up, w.base + half + up};
 }
@@ -165,7 +166,7 @@ RenderedView renderView(const Scene& scene, const SceneSnapshot& snapshot, const
               if (miss || near_axis < 0 || t_near >= hit.t) continue;
               hit = {t_near, 1, i, near_axis * 2 + (d[near_axis] > 0.0f ? 0 : 1)};
             }
-            float walker_u = 0.0f, walker_v = 0.0f;
+            WalkerTexel walker_texel;
             for (const int i : walkers_in_row) {
               const ScreenRect& r = walker_rects[static_cast<size_t>(i)];
               if (x < r.x0 || x > r.x1) continue;
@@ -176,9 +177,8 @@ RenderedView renderView(const Scene& scene, const SceneSnapshot& snapshot, const
               if (t <= 0.0f || t >= hit.t) continue;
               const Eigen::Vector3f p = origin + t * d - w.base;
               const float u = p.dot(w.right), v = p.z();
-              if (!insideWalkerSilhouette(u, v, w.height, w.gait_phase)) continue;
+              if (!scene.walkerCovers(w, u, v, walker_texel)) continue;
               hit = {t, 2, i, 0};
-              walker_u = u, walker_v = v;
             }
 
             const Eigen::Vector3f p = origin + hit.t * d;
@@ -192,8 +192,8 @@ RenderedView renderView(const Scene& scene, const SceneSnapshot& snapshot, const
             if (hit.kind == 2) {
               const WalkerInstance& w = snapshot.walkers[static_cast<size_t>(hit.index)];
               const float cosine = std::max(0.2f, std::abs(d.dot(w.normal)) / ray_length);
-              albedo = scene.texture(w.texture).sample(
-                  walker_u + w.width * 0.5f, w.height - walker_v, pixel_size / std::sqrt(cosine));
+              albedo = scene.texture(w.texture).sample(walker_texel.u, walker_texel.v,
+                                                       pixel_size / std::sqrt(cosine));
               normal = w.normal;
               id = w.object_id;
             } else {

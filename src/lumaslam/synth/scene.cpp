@@ -66,6 +66,27 @@ bool insideWalkerSilhouette(float u, float v, float height, float gait_phase) {
   return false;
 }
 
+bool Scene::walkerCovers(const WalkerInstance& w, float u, float v, WalkerTexel& texel) const {
+  if (w.photo < 0) {
+    if (!insideWalkerSilhouette(u, v, w.height, w.gait_phase)) return false;
+    texel = {u + w.width * 0.5f, w.height - v};
+    return true;
+  }
+  if (v < 0.0f || v >= w.height) return false;
+  const float lean = kPhotoWalkerLean * std::sin(w.gait_phase) * v;  // grows towards the head
+  const WalkerTexel at{u - lean + w.width * 0.5f, w.height - v};
+  if (at.u < 0.0f || at.u >= w.width) return false;
+  const cv::Mat& alpha = photo_alphas_[static_cast<size_t>(w.photo)];
+  if (!alpha.empty()) {
+    const float texels_per_m = static_cast<float>(alpha.rows) / w.height;
+    const int x = std::min(static_cast<int>(at.u * texels_per_m), alpha.cols - 1);
+    const int y = std::min(static_cast<int>(at.v * texels_per_m), alpha.rows - 1);
+    if (alpha.at<std::uint8_t>(y, x) < 128) return false;
+  }
+  texel = at;
+  return true;
+}
+
 float staticLighting(const std::vector<PointLight>& lights, float ambient, const Eigen::Vector3f& p,
                      const Eigen::Vector3f& n) {
   float light = ambient;
@@ -147,6 +168,8 @@ Scene Scene::build(const SceneOptions& options, std::uint64_t seed) {
   if (options.walkers + options.moving_boxes > 200)
     fail("Scene: too many dynamic objects ({} walkers + {} boxes)", options.walkers,
          options.moving_boxes);
+  for (size_t i = 0; i < options.people.size(); ++i)
+    checkPersonImage(options.people[i], "Scene: person image " + std::to_string(i));
   Scene scene;
   scene.options_ = options;
   scene.spotlight_ = options.spotlight;
@@ -199,9 +222,20 @@ Scene Scene::build(const SceneOptions& options, std::uint64_t seed) {
         static_cast<float>(rng.uniform(1.8, 2.6)), static_cast<float>(rng.uniform(0.9, 1.3)));
     walker.height = static_cast<float>(rng.uniform(1.6, 1.88));
     walker.width = 0.9f * walker.height / 1.75f;
-    Rng texture_rng = rng.fork();
-    walker.texture = scene.addTexture(
-        makeWalkerTexture(walker.width, walker.height, kWalkerTexel, texture_rng), kWalkerTexel);
+    Rng texture_rng = rng.fork();  // drawn even for photo walkers: same scene either way
+    if (options.people.empty()) {
+      walker.texture = scene.addTexture(
+          makeWalkerTexture(walker.width, walker.height, kWalkerTexel, texture_rng), kWalkerTexel);
+    } else {  // consecutive photos from a seeded start, so walkers differ when photos do
+      const PersonImage& person =
+          options.people[(hashKey(seed, 0x9e09) + static_cast<std::uint64_t>(i)) %
+                         options.people.size()];
+      const float rows = static_cast<float>(person.image.rows);
+      walker.width = walker.height * static_cast<float>(person.image.cols) / rows;
+      walker.texture = scene.addTexture(person.image, walker.height / rows);
+      walker.photo = static_cast<int>(scene.photo_alphas_.size());
+      scene.photo_alphas_.push_back(person.alpha);
+    }
     scene.walkers_.push_back(walker);
     scene.object_classes_.push_back("person");
   }
@@ -365,6 +399,7 @@ SceneSnapshot Scene::at(double t, const Eigen::Vector3d& viewer) const {
                    (static_cast<float>(walker.path.speed * t) + walker.path.offset_m) /
                    kStrideLength;
     w.texture = walker.texture;
+    w.photo = walker.photo;
     w.object_id = next_id++;
     snapshot.walkers.push_back(w);
   }

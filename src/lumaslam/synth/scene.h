@@ -12,6 +12,7 @@
 #include <Eigen/Core>
 #include <opencv2/core.hpp>
 
+#include "lumaslam/synth/person_image.h"
 #include "lumaslam/synth/texture.h"
 
 namespace lumaslam::synth {
@@ -33,6 +34,7 @@ struct WalkerInstance {
   float height = 1.75f;
   float gait_phase = 0.0f;  // radians
   int texture = 0;
+  int photo = -1;  // Scene::photoAlpha index when textured from a person photo, else -1
   std::uint8_t object_id = 0;
 };
 
@@ -63,6 +65,9 @@ struct SceneOptions {
   int moving_boxes = 0;
   bool spotlight = false;        // dim room, lit mainly by a sweeping spotlight
   std::vector<cv::Mat> posters;  // optional user images (CV_8UC3) pasted as posters
+  // Optional person photos: walkers show one of them (chosen by seed) instead of a procedural
+  // figure, scaled to the walker's height with the photo's aspect ratio.
+  std::vector<PersonImage> people;
   // Where the camera mostly is and looks (horizontal); walkers cross this view.
   Eigen::Vector3d view_origin{0.0, -0.9, 1.3};
   Eigen::Vector3d view_direction{0.0, 1.0, 0.0};
@@ -80,6 +85,15 @@ constexpr float kLightmapCell = 0.1f;
 // v: metres above the floor).
 bool insideWalkerSilhouette(float u, float v, float height, float gait_phase);
 
+// Photo walkers lean by up to this fraction of their height with the gait (head moves most).
+constexpr float kPhotoWalkerLean = 0.02f;
+
+// Texture coordinates (metres from the texture's top-left corner) of a point on a walker, see
+// Scene::walkerCovers.
+struct WalkerTexel {
+  float u = 0.0f, v = 0.0f;
+};
+
 class Scene {
  public:
   static Scene build(const SceneOptions& options, std::uint64_t seed);
@@ -88,6 +102,10 @@ class Scene {
   SceneSnapshot at(double t, const Eigen::Vector3d& viewer) const;
 
   const MipTexture& texture(int index) const { return textures_[static_cast<size_t>(index)]; }
+  // Whether billboard point (u, v) (as in insideWalkerSilhouette) is on walker w, and if so
+  // its texture coordinates (texel is left alone when not). Procedural walkers use the
+  // silhouette; photo walkers the photo's alpha (or whole rectangle), leaning with the gait.
+  bool walkerCovers(const WalkerInstance& w, float u, float v, WalkerTexel& texel) const;
   // Class name of a dynamic object id (1-based): "person" for walkers, "box" for moving boxes.
   const std::string& objectClass(std::uint8_t object_id) const;
   int dynamicObjectCount() const { return static_cast<int>(object_classes_.size()); }
@@ -107,6 +125,7 @@ class Scene {
     float height = 1.75f;
     float width = 0.7f;
     int texture = 0;
+    int photo = -1;
   };
   struct MovingBox {
     LinearPath path;
@@ -125,6 +144,7 @@ class Scene {
   std::vector<PointLight> lights_;
   std::vector<std::string> object_classes_;
   std::vector<cv::Mat> lightmaps_;
+  std::vector<cv::Mat> photo_alphas_;  // per photo walker: CV_8U alpha, empty = whole rectangle
   float ambient_ = 0.28f;
   bool spotlight_ = false;
   SceneOptions options_;

@@ -31,6 +31,7 @@ Scene buildScene(const Preset& preset, const SynthOptions& options,
       fail("{}: cannot read this texture image (missing or not an image)", path.string());
     scene_options.posters.push_back(image);
   }
+  scene_options.people = options.people;
   return Scene::build(scene_options, seed);
 }
 

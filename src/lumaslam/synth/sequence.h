@@ -27,6 +27,7 @@ struct SynthOptions {
   bool sensor_noise = true;
   bool depth_noise = true;                            // Kinect-like noise and holes in sensor_depth
   std::vector<std::filesystem::path> texture_images;  // posters (throws if one is unreadable)
+  std::vector<PersonImage> people;  // walker photos (see SceneOptions::people); empty = procedural
 };
 
 struct ObjectBox {
