@@ -1,5 +1,5 @@
-// Loop closing in the running System on `loop-stereo`: one lap of the room, then the first
-// part of a second lap rendered from other viewpoints (the same room and trajectory sampled
+// Loop closing in the running System on `loop-stereo`: one lap of the room, then 150 degrees
+// of a second lap rendered from other viewpoints (the same room and trajectory sampled
 // with one frame more), so that the camera comes back to where the map started with several
 // keyframes in a row. The vocabulary is trained on frames of the first lap. The same input is
 // run with loop closing off and on; the loop must be detected and closed and the ATE of the
@@ -25,7 +25,7 @@ namespace {
 using namespace lumaslam;
 
 constexpr int kLapFrames = 600;
-constexpr int kSecondLapFrames = 150;  // 90 degrees past the start
+constexpr int kSecondLapFrames = 250;  // 150 degrees past the start
 constexpr std::uint64_t kSeed = 1;
 
 struct LoopInput {
@@ -110,9 +110,8 @@ TEST(SystemLoop, ClosesTheLoopOnLoopStereoAndLowersTheAte) {
   ASSERT_GE(closed.loops.size(), 1U);
   // The loop joins the second lap to keyframes made long before (not a recent neighbour).
   EXPECT_GT(closed.loops.front().current, closed.loops.front().loop + 5);
-  // Issue 7 asks for <= 50 % of the open-loop ATE; this reaches ~60 % (docs/accuracy.md), so
-  // the test guards the gain that is there.
-  EXPECT_LT(closed.ate, 0.75 * open.ate);
+  // Issue 7's acceptance: ATE after closing <= 50 % of the ATE with loop closing off.
+  EXPECT_LE(closed.ate, 0.5 * open.ate);
 }
 
 }  // namespace
