@@ -20,7 +20,8 @@ using lumaslam::test::TempDir;
 // Real monocular data: the first 160 frames of KITTI odometry 07 (10 Hz, ~90 m with turns).
 TEST(CliRunKittiMono, Sequence07Excerpt) {
   const auto sequence = lumaslam::test::dataDir() / "kitti/odometry_07_first160/sequences/07";
-  if (!std::filesystem::exists(sequence)) GTEST_SKIP() << sequence << " not present";
+  ASSERT_TRUE(std::filesystem::exists(sequence))
+      << sequence << " is missing: the shared data is a required test input (LUMASLAM_SHARED_DIR)";
   TempDir dir("cli_run_kitti_mono");
   const auto settings = lumaslam::test::sourceDir() / "configs/kitti_04-12_mono.yaml";
   const auto run = runCli("run --dataset kitti:" + sequence.string() + " --settings " +

@@ -33,7 +33,8 @@ TEST(CliRunStereo, TracksASyntheticEurocDataset) {
 
 TEST(CliRunStereo, TracksRealEurocWithItsCalibration) {
   const auto root = lumaslam::test::dataDir() / "euroc" / "V1_01_easy_micro";
-  if (!std::filesystem::exists(root)) GTEST_SKIP() << "no " << root;
+  ASSERT_TRUE(std::filesystem::exists(root))
+      << root << " is missing: the shared data is a required test input (LUMASLAM_SHARED_DIR)";
   TempDir dir("cli_run_euroc");
   const auto settings = lumaslam::test::sourceDir() / "configs" / "euroc_stereo.yaml";
   const auto run = runCli("run --dataset euroc:" + root.string() + " --settings " +
@@ -46,7 +47,8 @@ TEST(CliRunStereo, TracksRealEurocWithItsCalibration) {
 
 TEST(CliRunStereo, StereoSettingsOnAMonocularDatasetIsAClearError) {
   const auto root = lumaslam::test::dataDir() / "euroc" / "V1_01_easy_micro";
-  if (!std::filesystem::exists(root)) GTEST_SKIP() << "no " << root;
+  ASSERT_TRUE(std::filesystem::exists(root))
+      << root << " is missing: the shared data is a required test input (LUMASLAM_SHARED_DIR)";
   TempDir dir("cli_run_euroc_mono");
   const auto settings = lumaslam::test::sourceDir() / "configs" / "euroc_stereo.yaml";
   const auto run = runCli("run --dataset euroc-mono:" + root.string() + " --settings " +

@@ -61,7 +61,8 @@ TEST(SystemDynamic, BoxRemovalCutsTheErrorOnWalkingXyz) {
 // (they are billboards, not photos) and the features it drops lie in its boxes.
 TEST(SystemDynamic, YoloDetectorDropsFeaturesInsideItsBoxes) {
   const auto model = test::modelsDir() / "yolov5n-320.onnx";
-  if (!std::filesystem::exists(model)) GTEST_SKIP() << model << " not found";
+  ASSERT_TRUE(std::filesystem::exists(model))
+      << model << " is missing: the shared data is a required test input (LUMASLAM_SHARED_DIR)";
   synth::SynthOptions people_only;  // YOLO knows no "box": the settings then say "person"
   people_only.moving_boxes = 0;
   const synth::SequenceRenderer sequence(synth::findPreset("walking-xyz-rgbd"), 40, 1, people_only);

@@ -100,7 +100,8 @@ TEST(SystemStereo, ReportsPosesOfTheCalibratedCameraOfARotatedRig) {
 // calibration, which the System rectifies before tracking.
 TEST(SystemStereo, RealEurocAtRestTracksEveryFrameWithoutDrift) {
   const auto root = test::dataDir() / "euroc" / "V1_01_easy_micro";
-  if (!std::filesystem::exists(root)) GTEST_SKIP() << "no " << root;
+  ASSERT_TRUE(std::filesystem::exists(root))
+      << root << " is missing: the shared data is a required test input (LUMASLAM_SHARED_DIR)";
   const auto settings = io::loadSettings(test::sourceDir() / "configs" / "euroc_stereo.yaml");
   ASSERT_TRUE(settings.stereo && settings.stereo->right);
   SystemOptions options;
