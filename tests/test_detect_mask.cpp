@@ -48,6 +48,7 @@ TEST(DynamicMask, DepthRefinementFreesTheWallBehindThePerson) {
   MaskParams params;
   params.margin_px = 10;
   params.depth_tolerance_m = 0.4;
+  params.depth_edge_px = 0;
   const std::optional<double> person = personDepth(scene.depth, scene.box, params);
   ASSERT_TRUE(person);
   EXPECT_NEAR(*person, 1.5, 1e-6);
@@ -68,6 +69,31 @@ TEST(DynamicMask, DepthRefinementFreesTheWallBehindThePerson) {
   params.depth_tolerance_m = 3.0;
   EXPECT_EQ(cv::countNonZero(refineMaskWithDepth(mask, scene.depth, {scene.box}, params)),
             cv::countNonZero(mask));
+}
+
+TEST(DynamicMask, DepthRefinementKeepsABandAroundThePersonMasked) {
+  const PersonScene scene;
+  MaskParams params;
+  params.margin_px = 10;
+  params.depth_edge_px = 6;
+  const cv::Mat mask = makeDynamicMask(scene.depth.size(), {scene.box}, params.margin_px);
+  const cv::Mat refined = refineMaskWithDepth(mask, scene.depth, {scene.box}, params);
+  EXPECT_EQ(cv::countNonZero(refined(scene.person)), scene.person.area());
+  // Wall pixels left and right of the person (x 120..179, rows 60..199 away from the hole):
+  // masked within 6 px of the silhouette, freed beyond.
+  for (int y : {60, 130, 199}) {
+    EXPECT_EQ(refined.at<uchar>(y, 120 - 6), 255) << y;
+    EXPECT_EQ(refined.at<uchar>(y, 120 - 7), 0) << y;
+    EXPECT_EQ(refined.at<uchar>(y, 179 + 6), 255) << y;
+    EXPECT_EQ(refined.at<uchar>(y, 179 + 7), 0) << y;
+  }
+  // The band costs only pixels near the person: far wall pixels of the grown box are free.
+  EXPECT_EQ(refined.at<uchar>(25, 102), 0);
+  EXPECT_EQ(refined.at<uchar>(235, 195), 0);
+  // The band is all the guard adds: wider bands mask strictly more.
+  params.depth_edge_px = 0;
+  const int no_band = cv::countNonZero(refineMaskWithDepth(mask, scene.depth, {scene.box}, params));
+  EXPECT_GT(cv::countNonZero(refined), no_band);
 }
 
 TEST(DynamicMask, DepthRefinementLeavesMaskedAreasOutsideBoxesAlone) {

@@ -66,6 +66,7 @@ DetectorParams DetectorParams::fromSettings(const core::SettingsFile& settings,
   read(settings, "Detector.propagation_inner_fraction", p.propagation.inner_fraction);
   read(settings, "Detector.mask_margin", p.mask.margin_px);
   read(settings, "Detector.depth_tolerance", p.mask.depth_tolerance_m);
+  read(settings, "Detector.depth_edge", p.mask.depth_edge_px);
   read(settings, "Detector.depth_percentile", p.mask.depth_percentile);
   read(settings, "Detector.image", p.image);
   read(settings, "Detector.memory_frames", p.memory_frames);
@@ -93,6 +94,7 @@ DetectorParams DetectorParams::fromSettings(const core::SettingsFile& settings,
                  0.1f, 1.0f);
   requireAtLeast(settings, "Detector.mask_margin", p.mask.margin_px, 0);
   requireAtLeast(settings, "Detector.depth_tolerance", p.mask.depth_tolerance_m, 0.0);
+  requireAtLeast(settings, "Detector.depth_edge", p.mask.depth_edge_px, 0);
   requireInRange(settings, "Detector.depth_percentile", p.mask.depth_percentile, 0.0, 1.0);
   if (!require_source) return p;
   if (p.type == "yolo" && p.model.empty())

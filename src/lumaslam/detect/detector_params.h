@@ -18,6 +18,7 @@ struct PropagationParams {
 struct MaskParams {
   int margin_px = 8;                  // boxes grow by this much on every side
   double depth_tolerance_m = 0.4;     // pixels farther than person depth + this are static
+  int depth_edge_px = 8;              // ... and at least this far from the person's pixels
   double depth_percentile = 0.25;     // person depth: this percentile of the central depths
   float depth_inner_fraction = 0.5f;  // person depth is read from this central part of the box
 };

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include <opencv2/imgproc.hpp>
+
 #include "lumaslam/core/error.h"
 
 namespace lumaslam::detect {
@@ -85,6 +87,13 @@ cv::Mat refineMaskWithDepth(const cv::Mat& mask, const cv::Mat& depth_m,
     }
     const cv::Mat near = depth_m(region) <= static_cast<float>(*person + params.depth_tolerance_m);
     keep(region) |= near | invalid(region);
+  }
+  // A feature's descriptor reads a patch around it: a background pixel right next to the
+  // person's silhouette describes the person and moves with them, so only pixels at least
+  // depth_edge_px away from every kept pixel are freed.
+  if (params.depth_edge_px > 0) {
+    const int size = 2 * params.depth_edge_px + 1;
+    cv::dilate(keep, keep, cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(size, size)));
   }
   cv::Mat refined = mask.clone();
   refined.setTo(0, covered & ~keep);

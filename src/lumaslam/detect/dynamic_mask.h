@@ -23,7 +23,8 @@ std::optional<double> personDepth(const cv::Mat& depth_m, const cv::Rect2f& box,
 // Unmasks the pixels of each (margin-grown) box whose depth is clearly behind the person
 // (> person depth + params.depth_tolerance_m): the wall behind someone keeps its features.
 // Pixels without valid depth stay masked; a pixel covered by several boxes is freed only if
-// it is behind the person of every box covering it. depth_m: CV_32F metres, 0 or NaN =
+// it is behind the person of every box covering it, and only if it is at least
+// params.depth_edge_px from every pixel that stays masked (the person's silhouette). depth_m: CV_32F metres, 0 or NaN =
 // invalid, same size as mask. Throws Error for a size or type mismatch.
 cv::Mat refineMaskWithDepth(const cv::Mat& mask, const cv::Mat& depth_m,
                             const std::vector<cv::Rect2f>& boxes, const MaskParams& params = {});
