@@ -124,6 +124,7 @@ void LoopCloser::stopGlobalBundleAdjustment() {
 }
 
 void LoopCloser::startGlobalBundleAdjustment() {
+  stopGlobalBundleAdjustment();  // never two at once (correctLoop has normally joined it)
   {
     std::lock_guard lock(queue_mutex_);
     if (stopping_ && params_.threaded) return;
@@ -143,8 +144,11 @@ bool LoopCloser::runGlobalBundleAdjustment() {
   {
     std::lock_guard lock(queue_mutex_);
     global_ba_running_ = false;
-    if (done) ++global_ba_stats_.completed;
-    if (abort_global_ba_) ++global_ba_stats_.aborted;
+    if (done) {
+      ++global_ba_stats_.completed;
+    } else if (abort_global_ba_) {
+      ++global_ba_stats_.aborted;
+    }
   }
   queue_changed_.notify_all();
   return done;
