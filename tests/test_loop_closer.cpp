@@ -5,10 +5,16 @@
 // its points are moved by a drift growing along the trajectory (yaw + translation), as
 // odometry drifts. The loop closer must find the loop, correct it, and bring the keyframes
 // closer to the ground truth; a wrong candidate must be rejected without touching the map.
+// The monocular variant adds a scale drift (the map grows by 0.8 % per keyframe) and closes
+// the loop with a Sim3. The global BA, in its own thread, must stop at shutdown and leave the
+// map as the loop correction left it.
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <future>
 #include <numeric>
+#include <thread>
 
 #include <gtest/gtest.h>
 
@@ -28,12 +34,21 @@ constexpr int kSecondLapKeyFrames = 7;                          // 9 .. 63 degre
 constexpr double kYawDriftDeg = 0.25;                           // per keyframe
 const Eigen::Vector3d kTranslationDrift(0.004, -0.003, 0.001);  // metres per keyframe
 
-SE3 driftAt(int k) {
-  SE3 drift = SE3::Identity();
-  drift.linear() = Eigen::AngleAxisd(k * kYawDriftDeg * M_PI / 180.0, Eigen::Vector3d::UnitZ())
-                       .toRotationMatrix();
-  drift.translation() = k * kTranslationDrift;
-  return drift;
+constexpr double kScaleDrift = 0.008;  // per keyframe (monocular)
+
+// World drift at keyframe k: X -> s R X + t (s = 1 without scale drift).
+optimize::Sim3 driftAt(int k, double scale_drift = 0.0) {
+  const Eigen::Quaterniond yaw(
+      Eigen::AngleAxisd(k * kYawDriftDeg * M_PI / 180.0, Eigen::Vector3d::UnitZ()));
+  return {std::pow(1.0 + scale_drift, k), yaw, k * kTranslationDrift};
+}
+
+// The camera pose that sees drifted points where the true pose saw the true ones.
+SE3 driftedPose(const optimize::Sim3& drift, const SE3& T_w_c) {
+  SE3 drifted = SE3::Identity();
+  drifted.linear() = drift.rotation.toRotationMatrix() * T_w_c.linear();
+  drifted.translation() = drift * Eigen::Vector3d(T_w_c.translation());
+  return drifted;
 }
 
 struct DriftedLoopMap {
@@ -46,7 +61,9 @@ struct DriftedLoopMap {
   std::vector<std::shared_ptr<map::KeyFrame>> keyframes;
   std::vector<SE3> truth;  // T_w_c per keyframe
 
-  DriftedLoopMap() {
+  double scale_drift;
+
+  explicit DriftedLoopMap(double scale_drift = 0.0) : scale_drift(scale_drift) {
     std::vector<track::Frame> frames;
     for (int i = 0; i < kLapFrames; ++i) {
       frames.push_back(test::buildRgbdFrame(builder, lap, i));
@@ -77,11 +94,12 @@ struct DriftedLoopMap {
     for (const auto& kf : keyframes) kf->updateConnections();
     // Drift: keyframe k is seen where drift(k) puts it; points move with their reference.
     for (const auto& point : map->mapPoints()) {
-      point->setPosition(driftAt(static_cast<int>(point->referenceKeyFrameId())) *
+      point->setPosition(driftAt(static_cast<int>(point->referenceKeyFrameId()), scale_drift) *
                          point->position());
     }
     for (std::size_t k = 0; k < keyframes.size(); ++k) {
-      keyframes[k]->setPose((driftAt(static_cast<int>(k)) * truth[k]).inverse());
+      keyframes[k]->setPose(
+          driftedPose(driftAt(static_cast<int>(k), scale_drift), truth[k]).inverse());
     }
     for (const auto& point : map->mapPoints()) point->updateNormalAndDepth();
   }
@@ -101,6 +119,12 @@ loop::LoopCloserParams sequentialParams() {
   loop::LoopCloserParams params;
   params.threaded = false;
   return params;
+}
+
+std::vector<SE3> posesOf(const DriftedLoopMap& world) {
+  std::vector<SE3> poses;
+  for (const auto& kf : world.keyframes) poses.push_back(kf->T_c_w());
+  return poses;
 }
 
 TEST(LoopCloser, DetectsAndClosesTheLoopTowardsGroundTruth) {
@@ -126,8 +150,9 @@ TEST(LoopCloser, DetectsAndClosesTheLoopTowardsGroundTruth) {
       loop.inliers, 1000.0 * loop.correction_m, loop.correction_deg, 1000.0 * before,
       1000.0 * after);
   // The injected drift at the current keyframe is what the loop corrects.
-  const SE3 drift = driftAt(static_cast<int>(loop.current));
-  EXPECT_NEAR(loop.correction_deg, Eigen::AngleAxisd(drift.linear()).angle() * 180.0 / M_PI, 1.0);
+  const auto drift = driftAt(static_cast<int>(loop.current));
+  EXPECT_NEAR(loop.correction_deg, Eigen::AngleAxisd(drift.rotation).angle() * 180.0 / M_PI, 1.0);
+  EXPECT_EQ(loop.correction_scale, 1.0);
   EXPECT_LT(after, 0.5 * before);
   // The loop keyframes are linked in the essential graph and now share points.
   const auto current = world.map->keyFrame(loop.current);
@@ -160,8 +185,90 @@ TEST(LoopCloser, RejectsAWrongPlaceWithoutChangingTheMap) {
   ASSERT_TRUE(match.has_value());
   EXPECT_GE(match->inliers, 40);
   // In the loop keyframe's map, which carries that keyframe's drift.
-  const SE3 error = match->T_c_w * driftAt(6) * world.truth.back();
+  const SE3 error = match->T_c_w * driftedPose(driftAt(6), world.truth.back());
   EXPECT_LT(error.translation().norm(), 0.05);
+}
+
+TEST(LoopCloser, ClosesAMonocularLoopWithSim3AndCorrectsTheScaleDrift) {
+  DriftedLoopMap world(kScaleDrift);
+  const double before = world.keyframeRmse();
+  std::vector<double> scales;  // per keyframe: median drift scale of its points
+  for (const auto& kf : world.keyframes) {
+    std::vector<double> of_points;
+    for (const auto& point : kf->mapPoints()) {
+      if (point) {
+        of_points.push_back(
+            driftAt(static_cast<int>(point->referenceKeyFrameId()), kScaleDrift).scale);
+      }
+    }
+    std::nth_element(of_points.begin(), of_points.begin() + of_points.size() / 2, of_points.end());
+    scales.push_back(of_points[of_points.size() / 2]);
+  }
+  auto params = sequentialParams();
+  params.fix_scale = false;
+  loop::LoopCloser closer(world.map, world.vocabulary, world.database, params);
+  for (const auto& kf : world.keyframes) {
+    closer.insertKeyFrame(kf);
+    closer.processPending();
+  }
+  const auto loops = closer.closedLoops();
+  ASSERT_EQ(loops.size(), 1U) << closer.rejectedCandidates() << " candidates rejected";
+  const auto& loop = loops.front();
+  const double after = world.keyframeRmse();
+  std::printf(
+      "Sim3 loop %llu -> %llu: %d inliers, correction %.1f mm %.2f deg scale %.4f; keyframe "
+      "RMSE %.1f mm before, %.1f mm after; point scales %.4f / %.4f\n",
+      static_cast<unsigned long long>(loop.current), static_cast<unsigned long long>(loop.loop),
+      loop.inliers, 1000.0 * loop.correction_m, loop.correction_deg, loop.correction_scale,
+      1000.0 * before, 1000.0 * after, scales[loop.current], scales[loop.loop]);
+  EXPECT_GE(loop.current, static_cast<map::Id>(kLapFrames));
+  EXPECT_LE(loop.loop, 8U);
+  EXPECT_GE(loop.inliers, 40);
+  // S_c_w takes the loop keyframe's map into the current keyframe's scale: that of the points
+  // each sees (points live over many keyframes, so their drift is that of older keyframes).
+  // Only half of the excess is required: the Ceres refinement moves the RANSAC scale (1.315
+  // for 1.322 expected) to 1.19, because this map is not self-consistent (a point carries
+  // its reference keyframe's drift into later keyframes with another drift) and the two
+  // keyframes are close, so reprojections observe the scale weakly.
+  const double expected_scale = scales[loop.current] / scales[loop.loop];
+  EXPECT_GT(loop.correction_scale, 1.0 + 0.5 * (expected_scale - 1.0));
+  EXPECT_LT(loop.correction_scale, expected_scale * 1.03);
+  EXPECT_LT(after, 0.5 * before);
+  EXPECT_EQ(closer.globalBundleAdjustmentStats().completed, 1);
+}
+
+TEST(LoopCloser, ShutdownAbortsTheGlobalBundleAdjustmentAndLeavesTheMapAsCorrected) {
+  DriftedLoopMap world;
+  auto params = sequentialParams();
+  params.threaded = true;
+  params.queue_capacity = world.keyframes.size();
+  std::promise<void> started;
+  std::vector<SE3> corrected;
+  loop::LoopCloser* closer_of_hook = nullptr;
+  // The hook runs in the adjustment's thread after the loop correction: it records the map
+  // and holds the adjustment until the abort is requested, so the shutdown surely meets it.
+  params.on_global_ba_start = [&] {
+    if (!corrected.empty()) return;  // only the first adjustment is held
+    corrected = posesOf(world);
+    started.set_value();
+    while (!closer_of_hook->globalBundleAdjustmentAbortRequested()) std::this_thread::yield();
+  };
+  loop::LoopCloser closer(world.map, world.vocabulary, world.database, params);
+  closer_of_hook = &closer;
+  for (const auto& kf : world.keyframes) closer.insertKeyFrame(kf);
+  // A guard against hanging if no loop were closed, not a speed requirement.
+  ASSERT_EQ(started.get_future().wait_for(std::chrono::minutes(10)), std::future_status::ready);
+  closer.shutdown();
+  const auto stats = closer.globalBundleAdjustmentStats();
+  EXPECT_EQ(stats.started, 1);
+  EXPECT_EQ(stats.aborted, 1);
+  EXPECT_EQ(stats.completed, 0);
+  ASSERT_EQ(closer.closedLoops().size(), 1U);
+  const auto poses = posesOf(world);
+  for (std::size_t k = 0; k < poses.size(); ++k) {
+    EXPECT_TRUE(poses[k].isApprox(corrected[k])) << "keyframe " << k;
+  }
+  for (const auto& point : world.map->mapPoints()) EXPECT_TRUE(point->position().allFinite());
 }
 
 }  // namespace

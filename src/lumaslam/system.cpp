@@ -121,12 +121,11 @@ System::System(const io::Settings& settings, const SystemOptions& options)
   const auto camera = frameCameraFrom(settings_, rectifier_.get());
   frame_builder_ = std::make_unique<track::FrameBuilder>(camera, orbSettingsFrom(settings_));
   const bool loop_closing = places_ && options.loop_closing.value_or(settings_.loop.closing);
-  if (loop_closing && settings_.sensor == io::SensorType::Monocular) {
-    // Monocular loops need a Sim3 correction (scale drift), which is not built yet.
-    spdlog::warn("loop closing is off for monocular (Sim3 loop correction is not implemented)");
-  } else if (loop_closing) {
+  if (loop_closing) {
     loop::LoopCloserParams loop_params;
     loop_params.threaded = !sequential_;
+    // Monocular: Sim3 loops, which also correct the scale drift.
+    loop_params.fix_scale = settings_.sensor != io::SensorType::Monocular;
     loop_params.direct_index_levels_up = loop::PlaceRecognition::kDirectIndexLevelsUp;
     // The mapper exists before the first keyframe reaches the closer.
     loop_closer_ = std::make_unique<loop::LoopCloser>(

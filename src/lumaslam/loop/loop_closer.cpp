@@ -4,6 +4,7 @@
 #include <cmath>
 #include <map>
 #include <set>
+#include <tuple>
 #include <unordered_map>
 #include <unordered_set>
 #include <utility>
@@ -15,6 +16,7 @@
 #include "lumaslam/mapping/point_fusion.h"
 #include "lumaslam/optimize/local_ba.h"
 #include "lumaslam/optimize/pose_graph.h"
+#include "lumaslam/optimize/sim3_alignment.h"
 
 namespace lumaslam::loop {
 
@@ -22,6 +24,8 @@ namespace {
 
 using KeyFramePtr = std::shared_ptr<map::KeyFrame>;
 using PosesById = std::unordered_map<map::Id, SE3>;
+using Sim3 = optimize::Sim3;
+using SimsById = std::unordered_map<map::Id, Sim3>;
 
 // The map points of a keyframe and its covisible neighbours, each once.
 std::vector<std::shared_ptr<map::MapPoint>> groupPoints(const KeyFramePtr& keyframe) {
@@ -37,12 +41,51 @@ std::vector<std::shared_ptr<map::MapPoint>> groupPoints(const KeyFramePtr& keyfr
   return points;
 }
 
-optimize::PoseGraphEdge edgeBetween(map::Id i, map::Id j, const SE3& T_i_w, const SE3& T_j_w) {
-  optimize::PoseGraphEdge edge;
-  edge.fromId = i;
-  edge.toId = j;
-  edge.T_i_j = T_i_w * T_j_w.inverse();
-  return edge;
+optimize::CameraIntrinsics cameraOf(const map::KeyFrame& keyframe) {
+  const auto& k = keyframe.intrinsics();
+  return {k.fx, k.fy, k.cx, k.cy, k.bf};
+}
+
+double invSigma2Of(const map::KeyFrame& keyframe, std::size_t feature) {
+  const auto& pyramid = keyframe.pyramid();
+  const int octave =
+      std::clamp(keyframe.features().keypoints[feature].octave, 0, pyramid.levels - 1);
+  return pyramid.inv_sigma2[static_cast<std::size_t>(octave)];
+}
+
+// 3D-3D pairs for the Sim3 between `current` (1) and `loop` (2): each feature of `current`
+// with a map point of its own matched (in `slots`) to a point the loop keyframe observes.
+struct Sim3Pairs {
+  std::vector<optimize::Sim3Pair> pairs;
+  std::vector<std::size_t> feature;  // per pair: the feature of `current`
+};
+
+Sim3Pairs sim3PairsOf(const map::KeyFrame& current, const map::KeyFrame& loop,
+                      const PointSlots& slots) {
+  Sim3Pairs out;
+  const SE3 T_1w = current.T_c_w();
+  const SE3 T_2w = loop.T_c_w();
+  const auto& f1 = current.features();
+  const auto& f2 = loop.features();
+  for (std::size_t i = 0; i < slots.size(); ++i) {
+    const auto& p2 = slots[i];
+    if (!p2 || p2->isBad()) continue;
+    const auto p1 = current.mapPoint(i);
+    if (!p1 || p1->isBad()) continue;
+    const int j = p2->featureIndexIn(loop.id());
+    if (j < 0) continue;
+    const auto uj = static_cast<std::size_t>(j);
+    optimize::Sim3Pair pair;
+    pair.X1 = T_1w * p1->position();
+    pair.X2 = T_2w * p2->position();
+    pair.uv1 = {f1.undistorted[i].x, f1.undistorted[i].y};
+    pair.uv2 = {f2.undistorted[uj].x, f2.undistorted[uj].y};
+    pair.invSigma2_1 = invSigma2Of(current, i);
+    pair.invSigma2_2 = invSigma2Of(loop, uj);
+    out.pairs.push_back(pair);
+    out.feature.push_back(i);
+  }
+  return out;
 }
 
 }  // namespace
@@ -67,9 +110,53 @@ void LoopCloser::shutdown() {
   {
     std::lock_guard lock(queue_mutex_);
     stopping_ = true;
+    abort_global_ba_ = true;
   }
   queue_changed_.notify_all();
   if (thread_.joinable()) thread_.join();
+  stopGlobalBundleAdjustment();
+}
+
+void LoopCloser::stopGlobalBundleAdjustment() {
+  if (!global_ba_thread_.joinable()) return;
+  abort_global_ba_ = true;
+  global_ba_thread_.join();
+}
+
+void LoopCloser::startGlobalBundleAdjustment() {
+  stopGlobalBundleAdjustment();  // never two at once (correctLoop has normally joined it)
+  {
+    std::lock_guard lock(queue_mutex_);
+    if (stopping_ && params_.threaded) return;
+    abort_global_ba_ = false;
+    global_ba_running_ = true;
+    ++global_ba_stats_.started;
+  }
+  if (params_.threaded) {
+    global_ba_thread_ = std::thread([this] { runGlobalBundleAdjustment(); });
+  } else {
+    runGlobalBundleAdjustment();
+  }
+}
+
+bool LoopCloser::runGlobalBundleAdjustment() {
+  const bool done = globalBundleAdjustment();
+  {
+    std::lock_guard lock(queue_mutex_);
+    global_ba_running_ = false;
+    if (done) {
+      ++global_ba_stats_.completed;
+    } else if (abort_global_ba_) {
+      ++global_ba_stats_.aborted;
+    }
+  }
+  queue_changed_.notify_all();
+  return done;
+}
+
+GlobalBAStats LoopCloser::globalBundleAdjustmentStats() const {
+  std::lock_guard lock(queue_mutex_);
+  return global_ba_stats_;
 }
 
 void LoopCloser::insertKeyFrame(std::shared_ptr<map::KeyFrame> keyframe) {
@@ -96,7 +183,9 @@ void LoopCloser::processPending() {
 
 void LoopCloser::waitUntilIdle() {
   std::unique_lock lock(queue_mutex_);
-  queue_changed_.wait(lock, [this] { return (queue_.empty() && !busy_) || !thread_.joinable(); });
+  queue_changed_.wait(lock, [this] {
+    return (queue_.empty() && !busy_ && !global_ba_running_) || !thread_.joinable();
+  });
 }
 
 void LoopCloser::run() {
@@ -147,19 +236,17 @@ void LoopCloser::process(const std::shared_ptr<map::KeyFrame>& keyframe) {
     return;
   }
   const ClosedLoop closed = correctLoop(*match);
-  spdlog::info("loop closed: keyframe {} -> {}, {} inliers, moved {:.1f} mm / {:.2f} deg",
-               closed.current, closed.loop, closed.inliers, 1000.0 * closed.correction_m,
-               closed.correction_deg);
+  spdlog::info(
+      "loop closed: keyframe {} -> {}, {} inliers, moved {:.1f} mm / {:.2f} deg, scale {:.3f}",
+      closed.current, closed.loop, closed.inliers, 1000.0 * closed.correction_m,
+      closed.correction_deg, closed.correction_scale);
   {
     std::lock_guard lock(queue_mutex_);
     closed_.push_back(closed);
   }
   last_loop_keyframe_ = keyframe->id();
   detector_.reset();
-  if (params_.global_bundle_adjustment) {
-    abort_global_ba_ = false;
-    globalBundleAdjustment();
-  }
+  if (params_.global_bundle_adjustment) startGlobalBundleAdjustment();
 }
 
 bool LoopCloser::globalBundleAdjustment() {
@@ -203,6 +290,7 @@ bool LoopCloser::globalBundleAdjustment() {
   options.maxIterations = params_.global_ba_iterations;
   options.refinementIterations = params_.global_ba_iterations;  // without the outliers
   options.abort = &abort_global_ba_;
+  if (params_.on_global_ba_start) params_.on_global_ba_start();
   const auto result = optimize::optimizeLocalBundle(problem, options);
   spdlog::info(
       "global BA after the loop: {} keyframes, {} points, {} iterations, cost {:.4g} -> {:.4g}{}",
@@ -263,6 +351,12 @@ std::optional<LoopMatch> LoopCloser::computeLoop(
     if (!candidate || candidate->isBad() || candidate == current) continue;
     const auto candidate_bow = bowOf(*candidate);
     if (!candidate_bow) continue;
+    if (!params_.fix_scale) {
+      if (auto match =
+              computeSim3Loop(current, current_bow->features, candidate, candidate_bow->features))
+        return match;
+      continue;
+    }
     PointSlots slots =
         searchByBow(*candidate, candidate_bow->features, current->features(), current_bow->features,
                     params_.bow_ratio, params_.bow_max_distance);
@@ -275,28 +369,74 @@ std::optional<LoopMatch> LoopCloser::computeLoop(
                        params_.bow_max_distance, slots);
     const int inliers = refinePose(frame, slots, T_c_w);
     if (inliers < params_.min_inliers) continue;
-    return LoopMatch{current, candidate, T_c_w, std::move(slots), inliers};
+    return LoopMatch{current, candidate, T_c_w, Sim3::fromSE3(T_c_w), std::move(slots), inliers};
   }
   return std::nullopt;
 }
 
+std::optional<LoopMatch> LoopCloser::computeSim3Loop(const KeyFramePtr& current,
+                                                     const FeatureVector& current_nodes,
+                                                     const KeyFramePtr& candidate,
+                                                     const FeatureVector& candidate_nodes) const {
+  const PointSlots bow = searchByBow(*candidate, candidate_nodes, current->features(),
+                                     current_nodes, params_.bow_ratio, params_.bow_max_distance);
+  if (countMatches(bow) < params_.min_bow_matches) return std::nullopt;
+  const auto camera = cameraOf(*current);
+  const Sim3Pairs bow_pairs = sim3PairsOf(*current, *candidate, bow);
+  const auto ransac = estimateSim3Ransac(bow_pairs.pairs, camera, params_.sim3);
+  if (!ransac) return std::nullopt;
+
+  // Guided matching (ORB-SLAM's SearchBySim3): the loop keyframe's points projected with the
+  // hypothesis, starting from the RANSAC inliers; then the Ceres refinement of S_12.
+  const MatchingFrame frame = matchingFrameOf(*current);
+  const Sim3 S_2w = Sim3::fromSE3(candidate->T_c_w());
+  PointSlots slots(bow.size());
+  for (std::size_t p = 0; p < bow_pairs.pairs.size(); ++p) {
+    if (ransac->inlier[p]) slots[bow_pairs.feature[p]] = bow[bow_pairs.feature[p]];
+  }
+  std::vector<std::shared_ptr<map::MapPoint>> loop_points;
+  for (const auto& point : candidate->mapPoints()) {
+    if (point && !point->isBad()) loop_points.push_back(point);
+  }
+  searchByProjection(frame, loop_points, {}, (ransac->S_12 * S_2w).toSE3(),
+                     params_.sim3_projection_radius_px, params_.bow_max_distance, slots);
+  const Sim3Pairs pairs = sim3PairsOf(*current, *candidate, slots);
+  const auto refined = optimize::refineSim3(pairs.pairs, ransac->S_12, camera);
+  if (refined.inliers < params_.sim3.min_inliers) return std::nullopt;
+
+  // Every point of the loop neighbourhood projected with the refined Sim3 (ORB-SLAM's final
+  // SearchByProjection); enough matches accept the loop.
+  const Sim3 S_cw = refined.S_12 * S_2w;
+  const SE3 T_c_w = S_cw.toSE3();
+  PointSlots matched(bow.size());
+  for (std::size_t p = 0; p < pairs.pairs.size(); ++p) {
+    if (refined.inlier[p]) matched[pairs.feature[p]] = slots[pairs.feature[p]];
+  }
+  searchByProjection(frame, groupPoints(candidate), {}, T_c_w, params_.projection_radius_px,
+                     params_.bow_max_distance, matched);
+  const int inliers = countMatches(matched);
+  if (inliers < params_.min_inliers) return std::nullopt;
+  return LoopMatch{current, candidate, T_c_w, S_cw, std::move(matched), inliers};
+}
+
 ClosedLoop LoopCloser::correctLoop(const LoopMatch& match) {
+  stopGlobalBundleAdjustment();  // a new loop: the running adjustment is out of date
   std::unique_lock<std::mutex> mapping_paused;
   if (pause_mapping_) mapping_paused = pause_mapping_();
   std::lock_guard update(map_->updateMutex());
   const KeyFramePtr& current = match.current;
 
   // 1. The current keyframe and its neighbours follow the loop transform (ORB-SLAM's
-  //    CorrectedSim3: T_i_w' = T_i_w * T_w_cur * T_cur_w').
+  //    CorrectedSim3: S_i_w' = T_i_w * T_w_cur * S_cur_w'; the scale is 1 for SE3 loops).
   current->updateConnections();
   std::vector<KeyFramePtr> group = current->covisibles();
   group.push_back(current);
   const SE3 T_w_cur = current->T_w_c();
-  PosesById uncorrected;
-  PosesById corrected;
+  SimsById uncorrected;
+  SimsById corrected;
   for (const auto& kf : group) {
-    uncorrected[kf->id()] = kf->T_c_w();
-    corrected[kf->id()] = kf->T_c_w() * T_w_cur * match.T_c_w;
+    uncorrected[kf->id()] = Sim3::fromSE3(kf->T_c_w());
+    corrected[kf->id()] = Sim3::fromSE3(kf->T_c_w() * T_w_cur) * match.S_c_w;
   }
   ClosedLoop closed;
   closed.current = current->id();
@@ -305,18 +445,19 @@ ClosedLoop LoopCloser::correctLoop(const LoopMatch& match) {
   const SE3 move = T_w_cur * match.T_c_w;
   closed.correction_m = move.translation().norm();
   closed.correction_deg = Eigen::AngleAxisd(move.linear()).angle() * 180.0 / M_PI;
+  closed.correction_scale = match.S_c_w.scale;
 
   std::unordered_map<map::Id, map::Id> corrected_by;  // point -> keyframe it moved with
   std::vector<std::shared_ptr<map::MapPoint>> moved;
   for (const auto& kf : group) {
-    const SE3 to_corrected = corrected[kf->id()].inverse() * uncorrected[kf->id()];
+    const Sim3 to_corrected = corrected[kf->id()].inverse() * uncorrected[kf->id()];
     for (const auto& point : kf->mapPoints()) {
       if (!point || point->isBad() || corrected_by.contains(point->id())) continue;
       point->setPosition(to_corrected * point->position());
       corrected_by[point->id()] = kf->id();
       moved.push_back(point);
     }
-    kf->setPose(corrected[kf->id()]);
+    kf->setPose(corrected[kf->id()].toSE3());
   }
   for (const auto& point : moved) point->updateNormalAndDepth();
 
@@ -360,21 +501,22 @@ ClosedLoop LoopCloser::correctLoop(const LoopMatch& match) {
   // 3. Essential graph (ORB-SLAM's OptimizeEssentialGraph), loop keyframe fixed. Loop links
   //    are measured with the corrected poses, every other edge with the poses before the loop.
   const auto keyframes = map_->keyFrames();
-  optimize::PoseGraphProblem problem;
-  PosesById initial;
-  PosesById before_loop;
+  SimsById initial;
+  SimsById before_loop;
+  std::vector<map::Id> vertex_ids;
   for (const auto& kf : keyframes) {
     if (kf->isBad()) continue;
-    const SE3 T = kf->T_c_w();
-    initial[kf->id()] = T;
-    before_loop[kf->id()] = uncorrected.contains(kf->id()) ? uncorrected[kf->id()] : T;
-    problem.vertices.push_back({kf->id(), T, kf == match.loop});
+    const Sim3 S = corrected.contains(kf->id()) ? corrected[kf->id()] : Sim3::fromSE3(kf->T_c_w());
+    initial[kf->id()] = S;
+    before_loop[kf->id()] = uncorrected.contains(kf->id()) ? uncorrected[kf->id()] : S;
+    vertex_ids.push_back(kf->id());
   }
+  std::vector<std::tuple<map::Id, map::Id, Sim3>> edges;  // i, j, S_i_j
   std::set<std::pair<map::Id, map::Id>> added;
-  const auto add_edge = [&](map::Id i, map::Id j, const PosesById& poses) {
+  const auto add_edge = [&](map::Id i, map::Id j, const SimsById& poses) {
     if (i == j || !poses.contains(i) || !poses.contains(j)) return;
     if (!added.insert({std::min(i, j), std::max(i, j)}).second) return;
-    problem.edges.push_back(edgeBetween(i, j, poses.at(i), poses.at(j)));
+    edges.emplace_back(i, j, poses.at(i) * poses.at(j).inverse());
   };
   for (const auto& [i, j] : loop_links) add_edge(i, j, initial);
   for (const auto& kf : keyframes) {
@@ -387,16 +529,44 @@ ClosedLoop LoopCloser::correctLoop(const LoopMatch& match) {
   }
   optimize::PoseGraphOptions options;
   options.maxIterations = params_.pose_graph_iterations;
-  const auto result = optimize::optimizePoseGraph(problem, options);
+  SimsById optimised;
+  if (params_.fix_scale) {
+    optimize::PoseGraphProblem problem;
+    for (const map::Id id : vertex_ids) {
+      problem.vertices.push_back({id, initial[id].toSE3(), id == match.loop->id()});
+    }
+    for (const auto& [i, j, S_i_j] : edges) {
+      optimize::PoseGraphEdge edge;
+      edge.fromId = i;
+      edge.toId = j;
+      edge.T_i_j = S_i_j.toSE3();
+      problem.edges.push_back(edge);
+    }
+    const auto result = optimize::optimizePoseGraph(problem, options);
+    for (std::size_t v = 0; v < vertex_ids.size(); ++v) {
+      optimised[vertex_ids[v]] = Sim3::fromSE3(result.T_c_w[v]);
+    }
+  } else {
+    optimize::Sim3PoseGraphProblem problem;
+    for (const map::Id id : vertex_ids) {
+      problem.vertices.push_back({id, initial[id], id == match.loop->id()});
+    }
+    for (const auto& [i, j, S_i_j] : edges) {
+      optimize::Sim3PoseGraphEdge edge;
+      edge.fromId = i;
+      edge.toId = j;
+      edge.S_i_j = S_i_j;
+      problem.edges.push_back(edge);
+    }
+    const auto result = optimize::optimizeSim3PoseGraph(problem, options);
+    for (std::size_t v = 0; v < vertex_ids.size(); ++v) optimised[vertex_ids[v]] = result.S_c_w[v];
+  }
 
   // 4. Keyframes take the optimised poses; points move with the keyframe that corrected
-  //    them, or their reference keyframe (the first observer if that one is gone).
-  PosesById optimised;
-  for (std::size_t v = 0; v < problem.vertices.size(); ++v) {
-    optimised[problem.vertices[v].id] = result.T_c_w[v];
-  }
+  //    them, or their reference keyframe (the first observer if that one is gone):
+  //    X' = S_optimised^-1 * S_initial * X (a Sim3 also rescales the point's depth).
   for (const auto& kf : keyframes) {
-    if (optimised.contains(kf->id())) kf->setPose(optimised[kf->id()]);
+    if (optimised.contains(kf->id())) kf->setPose(optimised[kf->id()].toSE3());
   }
   for (const auto& point : map_->mapPoints()) {
     if (point->isBad()) continue;
@@ -409,7 +579,7 @@ ClosedLoop LoopCloser::correctLoop(const LoopMatch& match) {
       if (observations.empty() || !optimised.contains(observations.front().first->id())) continue;
       anchor = observations.front().first->id();
     }
-    const SE3 shift = optimised[anchor].inverse() * initial[anchor];
+    const Sim3 shift = optimised[anchor].inverse() * initial[anchor];
     point->setPosition(shift * point->position());
     point->updateNormalAndDepth();
   }

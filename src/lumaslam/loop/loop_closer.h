@@ -1,20 +1,28 @@
 #pragma once
-// Loop closing (ORB-SLAM's LoopClosing for stereo / RGB-D, where scale is observable and the
-// loop transform is an SE3): for every keyframe local mapping has processed,
+// Loop closing (ORB-SLAM's LoopClosing): for stereo / RGB-D, where scale is observable, the
+// loop transform is an SE3; for monocular (fix_scale = false) a Sim3 that also corrects the
+// scale drift. For every keyframe local mapping has processed,
 //  1. detect consistent loop candidates (LoopDetector);
 //  2. compute the loop (computeLoop): SearchByBoW between the keyframe and each candidate,
 //     EPnP + RANSAC on the keyframe's features against the candidate's map points, pose-only
 //     refinement, guided projection matching of the points of the candidate and its
-//     covisible keyframes, a second refinement; accepted with >= min_inliers;
+//     covisible keyframes, a second refinement; accepted with >= min_inliers.
+//     Monocular (computeSim3Loop): the BoW matches whose feature has a map point in both
+//     keyframes give 3D-3D pairs; Sim3 by RANSAC + Umeyama (sim3_ransac.h), guided matching of
+//     the loop keyframe's points with it, Ceres refinement (optimize::refineSim3, >= 20
+//     inliers), then projection matching of the loop neighbourhood; >= min_inliers.
 //  3. correct the map (correctLoop), with local mapping paused and the map's update mutex
 //     held: move the keyframe and its covisible neighbours (and their points) by the loop
 //     correction, fuse the duplicated points, optimise the essential graph (spanning tree,
 //     strong covisibility and loop edges) with optimize::optimizePoseGraph, then move every
-//     other point with the keyframe it was corrected by (or its reference keyframe).
+//     other point with the keyframe it was corrected by (or its reference keyframe). In Sim3
+//     (monocular) every keyframe is a Sim3 vertex (optimize::optimizeSim3PoseGraph), and a
+//     point moves by S_corrected^-1 * S_before of its keyframe, which rescales it too.
 //  4. optionally a global bundle adjustment of every keyframe and point (origin fixed), solved
 //     on a snapshot without locks and written back with mapping paused; keyframes added
 //     meanwhile follow their nearest ancestor in the spanning tree (ORB-SLAM's RunGlobalBA).
-//     It runs in the closer's thread and stops early on abortGlobalBundleAdjustment().
+//     Threaded mode runs it in its own thread, so loop detection goes on; it is aborted (its
+//     result discarded, the map untouched) when a new loop is corrected and at shutdown.
 // A rejected candidate leaves the map untouched.
 #include <atomic>
 #include <condition_variable>
@@ -30,8 +38,10 @@
 #include "lumaslam/loop/keyframe_database.h"
 #include "lumaslam/loop/loop_detector.h"
 #include "lumaslam/loop/pose_matching.h"
+#include "lumaslam/loop/sim3_ransac.h"
 #include "lumaslam/loop/vocabulary.h"
 #include "lumaslam/map/map.h"
+#include "lumaslam/optimize/sim3.h"
 
 namespace lumaslam::loop {
 
@@ -52,12 +62,19 @@ struct LoopCloserParams {
   int pose_graph_iterations = 20;
   bool global_bundle_adjustment = true;
   int global_ba_iterations = 30;
+  // false (monocular): Sim3 loops and a Sim3 essential graph; true: SE3 (stereo / RGB-D).
+  bool fix_scale = true;
+  Sim3RansacParams sim3;
+  float sim3_projection_radius_px = 7.5F;  // ORB-SLAM's SearchBySim3 window
+  // Test hook: called in the global BA's thread right before the solve.
+  std::function<void()> on_global_ba_start;
 };
 
 struct LoopMatch {
   std::shared_ptr<map::KeyFrame> current;
   std::shared_ptr<map::KeyFrame> loop;
   SE3 T_c_w = SE3::Identity();  // the current keyframe's pose in the loop keyframe's map
+  optimize::Sim3 S_c_w{};       // the same with the current map's scale (1 for SE3 loops)
   PointSlots points;            // per feature of `current`: the matched loop map point (inliers)
   int inliers = 0;
 };
@@ -68,6 +85,13 @@ struct ClosedLoop {
   int inliers = 0;
   double correction_m = 0.0;  // how far the current keyframe moved
   double correction_deg = 0.0;
+  double correction_scale = 1.0;  // the current keyframe's map scale vs the loop's (Sim3)
+};
+
+struct GlobalBAStats {
+  int started = 0;
+  int completed = 0;  // written back to the map
+  int aborted = 0;    // stopped by a new loop or shutdown, nothing written
 };
 
 class LoopCloser {
@@ -90,7 +114,8 @@ class LoopCloser {
   void processPending();
   // Threaded mode: block until the queue is empty and the closer idle.
   void waitUntilIdle();
-  // Stops and joins the thread (idempotent); queued keyframes are handled first.
+  // Stops and joins the thread (idempotent); queued keyframes are handled first, a running
+  // global BA is aborted.
   void shutdown();
 
   // The steps, public for tests. computeLoop never writes to the map.
@@ -101,6 +126,8 @@ class LoopCloser {
   // Returns false if there was nothing to adjust or it was aborted (map unchanged then).
   bool globalBundleAdjustment();
   void abortGlobalBundleAdjustment() { abort_global_ba_ = true; }
+  bool globalBundleAdjustmentAbortRequested() const { return abort_global_ba_; }
+  GlobalBAStats globalBundleAdjustmentStats() const;
 
   std::vector<ClosedLoop> closedLoops() const;
   int rejectedCandidates() const { return rejected_; }
@@ -109,6 +136,14 @@ class LoopCloser {
   void run();
   void process(const std::shared_ptr<map::KeyFrame>& keyframe);
   std::optional<KeyFrameBow> bowOf(const map::KeyFrame& keyframe) const;
+  std::optional<LoopMatch> computeSim3Loop(const std::shared_ptr<map::KeyFrame>& current,
+                                           const FeatureVector& current_nodes,
+                                           const std::shared_ptr<map::KeyFrame>& candidate,
+                                           const FeatureVector& candidate_nodes) const;
+  // Aborts and joins a running global BA (threaded mode).
+  void stopGlobalBundleAdjustment();
+  void startGlobalBundleAdjustment();
+  bool runGlobalBundleAdjustment();
 
   std::shared_ptr<map::Map> map_;
   const Vocabulary& vocabulary_;
@@ -126,6 +161,9 @@ class LoopCloser {
   std::vector<ClosedLoop> closed_;
   std::atomic<int> rejected_{0};
   std::atomic<bool> abort_global_ba_{false};
+  bool global_ba_running_ = false;  // guarded by queue_mutex_
+  GlobalBAStats global_ba_stats_;   // guarded by queue_mutex_
+  std::thread global_ba_thread_;    // started and joined by the closer's thread (or shutdown)
   std::thread thread_;
 };
 

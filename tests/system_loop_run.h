@@ -1,0 +1,110 @@
+#pragma once
+// The `loop-stereo` loop sequence of the System loop tests: one lap of the room, then part of
+// a second lap rendered from other viewpoints (the same room and trajectory sampled with one
+// frame more), so that the camera comes back to where the map started with several keyframes
+// in a row. A vocabulary trained on frames of the first lap; a run with loop closing on or
+// off, as stereo or as monocular (left camera only).
+#include <cstdio>
+#include <filesystem>
+#include <optional>
+#include <string>
+
+#include <unistd.h>
+
+#include <gtest/gtest.h>
+#include <opencv2/imgproc.hpp>
+
+#include "test_system_run.h"
+
+#include "lumaslam/feature/orb_extractor.h"
+#include "lumaslam/loop/loop_closer.h"
+#include "lumaslam/loop/vocabulary_io.h"
+#include "lumaslam/loop/vocabulary_training.h"
+
+namespace lumaslam::test {
+
+struct LoopInput {
+  LoopInput(int lap_frames, int second_lap_frames, std::uint64_t seed)
+      : lap_frames(lap_frames),
+        second_lap_frames(second_lap_frames),
+        lap(synth::findPreset("loop-stereo"), lap_frames, seed),
+        second_lap(synth::findPreset("loop-stereo"), lap_frames + 1, seed) {}
+  int lap_frames;
+  int second_lap_frames;
+  synth::SequenceRenderer lap;
+  synth::SequenceRenderer second_lap;
+  int frames() const { return lap_frames + second_lap_frames; }
+  double fps() const { return lap.rig().fps; }
+  synth::Frame render(int i) const {
+    // Second lap: frame k of the (N+1)-frame lap sits between frames k-1 and k of the first.
+    return i < lap_frames ? lap.render(i) : second_lap.render(i - lap_frames + 1);
+  }
+};
+
+inline std::filesystem::path trainLoopVocabulary(const LoopInput& input) {
+  const feature::OrbExtractor extractor(feature::OrbSettings{});
+  std::vector<cv::Mat> descriptors;
+  for (int i = 0; i < input.lap_frames; i += 10) {
+    cv::Mat gray;
+    cv::cvtColor(input.lap.render(i).cam0.image, gray, cv::COLOR_BGR2GRAY);
+    descriptors.push_back(extractor.extract(gray).descriptors);
+  }
+  loop::TrainingParams params;
+  params.depth = 4;
+  const auto path = std::filesystem::temp_directory_path() /
+                    ("lumaslam_test_loop_vocab_" + std::to_string(::getpid()) + ".bin");
+  loop::saveVocabulary(loop::trainVocabulary(descriptors, params), path);
+  return path;
+}
+
+struct LoopRun {
+  double ate = 0.0;
+  double ate_sim3 = 0.0;
+  std::size_t tracked = 0;
+  std::vector<loop::ClosedLoop> loops;
+  loop::GlobalBAStats global_ba;
+};
+
+inline LoopRun runLoop(const LoopInput& input, const std::filesystem::path& vocabulary,
+                       bool loop_closing, std::optional<io::SensorType> sensor = std::nullopt) {
+  SystemOptions options;
+  options.enhance_preset = "off";
+  options.sequential = true;
+  options.vocabulary = vocabulary;
+  options.loop_closing = loop_closing;
+  System system(presetSettings(input.lap, {}, sensor), options);
+  Trajectory ground_truth;
+  LoopRun result;
+  for (int i = 0; i < input.frames(); ++i) {
+    synth::Frame frame = input.render(i);
+    SensorFrame sensor_frame = sensorFrame(frame, sensor);
+    sensor_frame.index = static_cast<std::size_t>(i);
+    sensor_frame.timestamp = i / input.fps();
+    ground_truth.push_back({sensor_frame.timestamp, frame.cam0.T_w_c});
+    if (system.track(sensor_frame).outcome.state == track::TrackingState::Ok) ++result.tracked;
+  }
+  system.shutdown();
+  if (system.loopCloser()) {
+    result.loops = system.loopCloser()->closedLoops();
+    result.global_ba = system.loopCloser()->globalBundleAdjustmentStats();
+  }
+  result.ate = eval::evaluate(system.frameTrajectory(), ground_truth, {}).ate.stats.rmse;
+  eval::EvaluationOptions sim3;
+  sim3.align = eval::AlignMode::Sim3;
+  result.ate_sim3 = eval::evaluate(system.frameTrajectory(), ground_truth, sim3).ate.stats.rmse;
+  const std::string sensor_name(sensor ? io::toString(*sensor) : "preset sensor");
+  std::printf(
+      "%s, loop closing %s: tracked %zu/%d, %zu keyframes, %zu loops, ATE %.1f mm (Sim3 %.1f "
+      "mm)\n",
+      sensor_name.c_str(), loop_closing ? "on" : "off", result.tracked, input.frames(),
+      system.keyFrameCount(), result.loops.size(), 1000.0 * result.ate, 1000.0 * result.ate_sim3);
+  for (const auto& loop : result.loops) {
+    std::printf("  loop keyframe %llu -> %llu: %d inliers, moved %.1f mm %.2f deg, scale %.4f\n",
+                static_cast<unsigned long long>(loop.current),
+                static_cast<unsigned long long>(loop.loop), loop.inliers,
+                1000.0 * loop.correction_m, loop.correction_deg, loop.correction_scale);
+  }
+  return result;
+}
+
+}  // namespace lumaslam::test
