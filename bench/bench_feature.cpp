@@ -1,6 +1,6 @@
 // ORB extraction: ours (sequential and per-level parallel) vs cv::ORB with the same settings
-// (1000 features, 8 levels, scale 1.2) on real frames; counters report the feature count and
-// the 8x8 grid coverage. Plus the matchers on a real frame pair.
+// (1000 features, 8 levels, scale 1.2) on real and synthetic frames; counters report the
+// feature count and the 8x8 grid coverage. Plus the matchers on a real frame pair.
 #include <algorithm>
 #include <filesystem>
 #include <string>
@@ -10,11 +10,13 @@
 #include <opencv2/core/utility.hpp>
 #include <opencv2/features2d.hpp>
 #include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
 
 #include "lumaslam/feature/descriptor_matcher.h"
 #include "lumaslam/feature/grid_coverage.h"
 #include "lumaslam/feature/orb_extractor.h"
 #include "lumaslam/feature/projection_matcher.h"
+#include "lumaslam/synth/sequence.h"
 
 namespace {
 
@@ -30,8 +32,20 @@ fs::path eurocCam0(int index) {
   return files.at(index);
 }
 
-// 0: EuRoC 752x480, 1: its central 640x480 crop, 2: KITTI 1226x370.
+// Frame 0 of a synthetic preset (640x480, rendered in memory), gray.
+cv::Mat syntheticImage(const char* preset_name) {
+  const lumaslam::synth::Preset& preset = lumaslam::synth::findPreset(preset_name);
+  const lumaslam::synth::SequenceRenderer sequence(preset, preset.frames, 1);
+  cv::Mat gray;
+  cv::cvtColor(sequence.render(0).cam0.image, gray, cv::COLOR_BGR2GRAY);
+  return gray;
+}
+
+// 0: EuRoC 752x480, 1: its central 640x480 crop, 2: KITTI 1226x370, 3: synthetic xyz-rgbd
+// 640x480, 4: synthetic dark-rgbd 640x480 (most FAST cells fall back to the low threshold).
 cv::Mat benchImage(int which) {
+  if (which == 3) return syntheticImage("xyz-rgbd");
+  if (which == 4) return syntheticImage("dark-rgbd");
   if (which == 2) {
     return cv::imread((fs::path(LUMASLAM_SHARED_DIR) /
                        "data/kitti/odometry_07_first160/sequences/07/image_0/000000.png")
@@ -68,7 +82,7 @@ void BM_OrbOurs(benchmark::State& state) {
 }
 BENCHMARK(BM_OrbOurs)
     ->ArgNames({"image", "parallel"})
-    ->ArgsProduct({{0, 1, 2}, {0, 1}})
+    ->ArgsProduct({{0, 1, 2, 3, 4}, {0, 1}})
     ->Unit(benchmark::kMillisecond);
 
 void BM_OrbOpenCv(benchmark::State& state) {
@@ -86,7 +100,7 @@ void BM_OrbOpenCv(benchmark::State& state) {
   cv::setNumThreads(previousThreads);
   labelAndCount(state, image, keypoints);
 }
-BENCHMARK(BM_OrbOpenCv)->ArgNames({"image"})->DenseRange(0, 2)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_OrbOpenCv)->ArgNames({"image"})->DenseRange(0, 4)->Unit(benchmark::kMillisecond);
 
 struct FramePair {
   OrbFeatures a, b;

@@ -11,7 +11,8 @@ namespace {
 using namespace lumaslam::optimize;
 
 // Args: observations, stereo (0/1), variant (0: batched residuals + normal Cholesky, the
-// default; 1: batched + DENSE_QR; 2: one residual block per observation + ceres::HuberLoss).
+// default; 1: batched + DENSE_QR; 2: one residual block per observation + ceres::HuberLoss;
+// 3: PoseBackend::kLevenbergMarquardt, the tracker's choice).
 void BM_PoseOnly(benchmark::State& state) {
   const SyntheticPoseOnly synthetic =
       makeSyntheticPoseOnly({.numObservations = static_cast<int>(state.range(0)),
@@ -21,6 +22,7 @@ void BM_PoseOnly(benchmark::State& state) {
   PoseOnlyOptions options;
   options.solver = state.range(2) == 1 ? DenseSolver::kQR : DenseSolver::kNormalCholesky;
   options.batchResiduals = state.range(2) != 2;
+  if (state.range(2) == 3) options.backend = PoseBackend::kLevenbergMarquardt;
   int inliers = 0;
   int iterations = 0;
   for (auto _ : state) {
@@ -33,7 +35,7 @@ void BM_PoseOnly(benchmark::State& state) {
   state.counters["iterations"] = iterations;
 }
 BENCHMARK(BM_PoseOnly)
-    ->ArgsProduct({{300, 1000}, {0, 1}, {0, 1, 2}})
+    ->ArgsProduct({{300, 1000}, {0, 1}, {0, 1, 2, 3}})
     ->Unit(benchmark::kMicrosecond);
 
 // Args: points, stereo (0/1), solver (0 sparse Schur, 1 iterative Schur, 2 dense Schur).

@@ -16,7 +16,7 @@ struct OrbFeatures {
   // angle in degrees [0, 360), response = FAST score at that level.
   std::vector<cv::KeyPoint> keypoints;
   cv::Mat descriptors;           // CV_8UC1, keypoints.size() x 32
-  std::vector<cv::Mat> pyramid;  // level images (level 0 shares the input's data)
+  std::vector<cv::Mat> pyramid;  // level images (sub-images of padded buffers; a copy)
 };
 
 class OrbExtractor {

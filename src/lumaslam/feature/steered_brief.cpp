@@ -60,13 +60,16 @@ void computeSteeredBrief(const cv::Mat& smoothed, cv::Point2f point, float angle
     const cv::v_int32x4 column = cv::v_round(x * cosines - y * sines);
     cv::v_store_aligned(offsets.data() + i, row * steps + column);
   }
+  // Branch-free bits: each comparison is a coin flip, so a branch per bit mispredicts half the
+  // time (that made this loop a fifth of the extraction's run time at a tenth of its
+  // instructions).
   for (int byte = 0; byte < kDescriptorBytes; ++byte) {
     const int* sample = offsets.data() + byte * 16;
-    std::uint8_t value = 0;
+    unsigned value = 0;
     for (int bit = 0; bit < 8; ++bit) {
-      if (center[sample[2 * bit]] < center[sample[2 * bit + 1]]) value |= 1u << bit;
+      value |= static_cast<unsigned>(center[sample[2 * bit]] < center[sample[2 * bit + 1]]) << bit;
     }
-    descriptor[byte] = value;
+    descriptor[byte] = static_cast<std::uint8_t>(value);
   }
 }
 

@@ -87,10 +87,14 @@ PoseBatchCost::PoseBatchCost(const CameraIntrinsics& camera,
 }
 
 SE3 PoseBatchCost::poseAt(const double* delta) const {
-  SE3 update = SE3::Identity();
-  update.linear() = expSO3(Eigen::Map<const Eigen::Vector3d>(delta)).toRotationMatrix();
-  update.translation() = Eigen::Map<const Eigen::Vector3d>(delta + 3);
-  return update * reference_;
+  // Through a normalised quaternion: a product of rotation matrices drifts off orthonormality,
+  // which the tracker's motion model amplifies (see pose_levenberg_marquardt.cpp).
+  const Eigen::Quaterniond step = expSO3(Eigen::Map<const Eigen::Vector3d>(delta));
+  SE3 pose = SE3::Identity();
+  pose.linear() = (step * Eigen::Quaterniond(reference_.linear())).normalized().toRotationMatrix();
+  pose.translation() =
+      step * reference_.translation() + Eigen::Map<const Eigen::Vector3d>(delta + 3);
+  return pose;
 }
 
 void PoseBatchCost::setHuberDeltas(double mono, double stereo) {

@@ -10,6 +10,7 @@
 
 #include "lumaslam/core/error.h"
 #include "lumaslam/optimize/pose_batch_cost.h"
+#include "lumaslam/optimize/pose_levenberg_marquardt.h"
 #include "lumaslam/optimize/reprojection_cost.h"
 #include "lumaslam/optimize/se3_parameter.h"
 
@@ -56,6 +57,47 @@ void validate(const PoseOnlyProblem& problem, const PoseOnlyOptions& options) {
   }
 }
 
+// The rounds of optimizePose with minimizePoseLevenbergMarquardt for each round's solve.
+PoseOnlyResult optimizePoseLevenbergMarquardt(const PoseOnlyProblem& problem,
+                                              const PoseOnlyOptions& options,
+                                              PoseOnlyResult result) {
+  const auto& observations = problem.observations;
+  const std::size_t count = observations.size();
+  std::vector<char> active(count, 1);
+  SE3 T_c_w = problem.T_c_w;
+  int numInliers = 0;
+  for (int round = 0; round < options.rounds; ++round) {
+    for (std::size_t i = 0; i < count; ++i) {
+      if (active[i] && !((T_c_w * observations[i].X_w).z() > kMinProjectionDepth)) {
+        result.isOutlier[i] = true;
+        active[i] = 0;
+      }
+    }
+    const bool robust = round < options.rounds - 1;
+    const PoseRoundResult solved = minimizePoseLevenbergMarquardt(
+        problem.camera, observations, active, T_c_w,
+        robust ? options.thresholds.huberDeltaMono() : 0.0,
+        robust ? options.thresholds.huberDeltaStereo() : 0.0, options.iterationsPerRound);
+    T_c_w = solved.T_c_w;
+    result.iterations += solved.iterations;
+    numInliers = 0;
+    for (std::size_t i = 0; i < count; ++i) {
+      const PoseObservation& obs = observations[i];
+      const double threshold =
+          obs.isStereo() ? options.thresholds.chi2Stereo : options.thresholds.chi2Mono;
+      const bool outlier = !(observationChi2(problem.camera, T_c_w, obs) <= threshold);
+      result.isOutlier[i] = outlier;
+      active[i] = outlier ? 0 : 1;
+      if (!outlier) ++numInliers;
+    }
+    if (numInliers < options.minInliers) break;
+  }
+  result.numInliers = numInliers;
+  result.success = numInliers >= options.minInliers;
+  if (result.success) result.T_c_w = T_c_w;
+  return result;
+}
+
 }  // namespace
 
 PoseOnlyResult optimizePose(const PoseOnlyProblem& problem, const PoseOnlyOptions& options) {
@@ -69,6 +111,8 @@ PoseOnlyResult optimizePose(const PoseOnlyProblem& problem, const PoseOnlyOption
     result.isOutlier.assign(observations.size(), true);
     return result;
   }
+  if (options.backend == PoseBackend::kLevenbergMarquardt)
+    return optimizePoseLevenbergMarquardt(problem, options, std::move(result));
 
   // Batched: a 6-vector update of a reference pose (pose_batch_cost.h). Per observation: the
   // SE3 block with its manifold (se3_parameter.h).

@@ -33,6 +33,12 @@ enum class DenseSolver {
   kQR,              // ceres::DENSE_QR
 };
 
+enum class PoseBackend {
+  kCeres,               // ceres::Solve with the residual layout and solver below
+  kLevenbergMarquardt,  // pose_levenberg_marquardt.h: Ceres' per-observation HuberLoss model
+                        // and trust-region rules on 6x6 normal equations, without Ceres
+};
+
 struct PoseOnlyOptions {
   int rounds = 4;
   int iterationsPerRound = 10;
@@ -43,6 +49,7 @@ struct PoseOnlyOptions {
   // per observation with ceres::HuberLoss (the straightforward reference layout).
   bool batchResiduals = true;
   DenseSolver solver = DenseSolver::kNormalCholesky;
+  PoseBackend backend = PoseBackend::kCeres;  // batchResiduals and solver apply to kCeres
 };
 
 struct PoseOnlyResult {
