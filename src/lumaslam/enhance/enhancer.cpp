@@ -99,26 +99,47 @@ cv::Mat Enhancer::tileLimits(const cv::Mat& adjusted, const Clahe::Tiling& tilin
 
 EnhancementPlan Enhancer::planFor(const cv::Mat& channel) {
   EnhancementPlan plan;
-  plan.size = channel.size();
-  plan.tile = channel.size();
-  const cv::Mat table = compensationTable(channel, plan.report);
-  if (!params_.clahe.enabled) {
-    plan.luts = table;
-    return plan;
-  }
+  plan.compensation = compensationTable(channel, plan.report);
   cv::Mat adjusted = channel;
-  if (!table.empty()) {
-    cv::LUT(channel, table, adjusted_);
+  if (!plan.compensation.empty()) {
+    cv::LUT(channel, plan.compensation, adjusted_);
     adjusted = adjusted_;
   }
+  if (params_.clahe.enabled) {
+    plan.limits = tileLimits(adjusted, clahe_.tiling(adjusted), plan.report);
+  }
+  buildTables(adjusted, plan);
+  return plan;
+}
+
+EnhancementPlan Enhancer::planFor(const cv::Mat& channel, const EnhancementPlan& decisions) const {
+  EnhancementPlan plan;
+  plan.report = decisions.report;
+  plan.compensation = decisions.compensation;
+  plan.limits = decisions.limits;
+  cv::Mat adjusted = channel;
+  if (!plan.compensation.empty()) {
+    adjusted = cv::Mat();  // a fresh image: cv::LUT into a header of `channel` would overwrite it
+    cv::LUT(channel, plan.compensation, adjusted);
+  }
+  buildTables(adjusted, plan);
+  return plan;
+}
+
+void Enhancer::buildTables(const cv::Mat& adjusted, EnhancementPlan& plan) const {
+  plan.size = adjusted.size();
+  plan.tile = adjusted.size();
+  if (!params_.clahe.enabled) {
+    plan.luts = plan.compensation;
+    return;
+  }
   const Clahe::Tiling tiling = clahe_.tiling(adjusted);
-  const cv::Mat limits = tileLimits(adjusted, tiling, plan.report);
   cv::Mat histograms = clahe_.tileHistograms(tiling);
   plan.tile = tiling.tile;
-  plan.luts = clahe_.lookupTables(histograms, limits, tiling.tile.area());
-  if (!table.empty()) {
+  plan.luts = clahe_.lookupTables(histograms, plan.limits, tiling.tile.area());
+  if (!plan.compensation.empty()) {
     // Fold Eq. 4 into the CLAHE tables: channel -> compensated -> equalised in one lookup.
-    const uchar* compensate = table.ptr<uchar>();
+    const uchar* compensate = plan.compensation.ptr<uchar>();
     for (int t = 0; t < plan.luts.rows; ++t) {
       uchar* lut = plan.luts.ptr<uchar>(t);
       std::array<uchar, 256> folded{};
@@ -126,7 +147,6 @@ EnhancementPlan Enhancer::planFor(const cv::Mat& channel) {
       std::copy(folded.begin(), folded.end(), lut);
     }
   }
-  return plan;
 }
 
 EnhancedFrame Enhancer::applyTo(const Input& input, const EnhancementPlan& plan) const {
@@ -171,12 +191,17 @@ EnhancedFrame Enhancer::apply(const cv::Mat& image, const EnhancementPlan& plan)
   return applyTo(prepare(image), plan);
 }
 
+EnhancedFrame Enhancer::enhanceWith(const cv::Mat& image, const EnhancementPlan& decisions) const {
+  const Input input = prepare(image);
+  return applyTo(input, planFor(input.channel, decisions));
+}
+
 std::vector<ContrastStats> Enhancer::contrastOf(const cv::Mat& image) const {
   const Input input = prepare(image);
   FrameReport report;
   const cv::Mat table = compensationTable(input.channel, report);
-  cv::Mat adjusted = input.channel;
-  if (!table.empty()) cv::LUT(input.channel, table, adjusted);
+  const cv::Mat adjusted =
+      table.empty() ? input.channel : compensation_.apply(input.channel, report.brightness.mean);
   const auto& c = params_.clahe;
   if (c.limit_mode != ClipLimitMode::kLocal) return {measureContrast(adjusted, c.sigma)};
   const Clahe::Tiling tiling = clahe_.tiling(adjusted);

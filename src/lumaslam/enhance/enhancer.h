@@ -33,13 +33,16 @@ struct EnhancedFrame {
   FrameReport report;
 };
 
-// Everything decided about one frame: the work-channel mapping, as one 256-entry table per
-// CLAHE tile (brightness compensation folded in), and what was measured.
+// Everything decided about one frame: the decisions (gate -> compensation table, CLAHE
+// limits), the resulting work-channel mapping as one 256-entry table per CLAHE tile
+// (compensation folded in), and what was measured.
 struct EnhancementPlan {
   FrameReport report;
-  cv::Size size;  // of the frame it was made for; apply() needs the same size
-  cv::Size tile;  // CLAHE tile size (in the padded frame) the tables belong to
-  cv::Mat luts;   // CV_8UC1, tiles x 256; one row: a plain lookup; empty: identity
+  cv::Mat compensation;  // Eq. 4 table (CV_8UC1, 1x256); empty when the gate left the frame alone
+  cv::Mat limits;        // CLAHE limit per tile (CV_64FC1, tiles_y x tiles_x); empty: CLAHE off
+  cv::Size size;         // of the frame it was made for; apply() needs the same size
+  cv::Size tile;         // CLAHE tile size (in the padded frame) the tables belong to
+  cv::Mat luts;          // CV_8UC1, tiles x 256; one row: a plain lookup; empty: identity
 };
 
 class Enhancer {
@@ -54,6 +57,9 @@ class Enhancer {
   EnhancementPlan plan(const cv::Mat& image);
   // Thread-safe; throws Error when the image's size differs from the plan's.
   EnhancedFrame apply(const cv::Mat& image, const EnhancementPlan& plan) const;
+  // Takes the decisions of `decisions` (gate, compensation table, CLAHE limits) but builds
+  // the CLAHE tables from this image's own histograms. Thread-safe.
+  EnhancedFrame enhanceWith(const cv::Mat& image, const EnhancementPlan& decisions) const;
 
   // Contrast statistics of the channel as it reaches CLAHE: one entry for the whole image,
   // or one per tile in local mode. `enhance --calibrate` takes their maxima.
@@ -71,6 +77,8 @@ class Enhancer {
   // Compensation table for this frame's channel, or empty when the gate leaves it alone.
   cv::Mat compensationTable(const cv::Mat& channel, FrameReport& report) const;
   EnhancementPlan planFor(const cv::Mat& channel);
+  EnhancementPlan planFor(const cv::Mat& channel, const EnhancementPlan& decisions) const;
+  void buildTables(const cv::Mat& adjusted, EnhancementPlan& plan) const;
   cv::Mat tileLimits(const cv::Mat& adjusted, const Clahe::Tiling& tiling, FrameReport& report);
   EnhancedFrame applyTo(const Input& input, const EnhancementPlan& plan) const;
 

@@ -21,6 +21,8 @@ const NameTable<ClipLimitMode> kLimitNames = {{"fixed", ClipLimitMode::kFixed},
                                               {"local", ClipLimitMode::kLocal}};
 const NameTable<SigmaSource> kSigmaNames = {{"intensity", SigmaSource::kIntensity},
                                             {"gradient", SigmaSource::kGradient}};
+const NameTable<StereoMapping> kStereoNames = {{"independent", StereoMapping::kIndependent},
+                                               {"shared", StereoMapping::kShared}};
 const NameTable<MaximaSource> kMaximaNames = {{"fixed", MaximaSource::kFixed},
                                               {"online", MaximaSource::kOnline}};
 
@@ -154,6 +156,7 @@ EnhancerParams EnhancerParams::fromSettings(const core::SettingsFile& s) {
   readEnum(s, "Enhancement.brightness.weights", kWeightNames, p.compensation.weights);
 
   readEnum(s, "Enhancement.channel", kChannelNames, p.channel);
+  readEnum(s, "Enhancement.stereo", kStereoNames, p.stereo);
 
   auto& c = p.clahe;
   read(s, "Enhancement.clahe.enabled", c.enabled);
@@ -186,6 +189,7 @@ std::string EnhancerParams::toSettingsText() const {
       "Enhancement.brightness.beta: {}\n"
       "Enhancement.brightness.weights: \"{}\"\n"
       "Enhancement.channel: \"{}\"\n"
+      "Enhancement.stereo: \"{}\"\n"
       "Enhancement.clahe.enabled: {}\n"
       "Enhancement.clahe.tiles_x: {}\n"
       "Enhancement.clahe.tiles_y: {}\n"
@@ -199,8 +203,8 @@ std::string EnhancerParams::toSettingsText() const {
       "Enhancement.clahe.d_max: {:.6f}\n",
       preset, int(gate.enabled), gate.epsilon, gate.theta, int(compensation.enabled),
       compensation.alpha, compensation.beta, nameOf(kWeightNames, compensation.weights),
-      nameOf(kChannelNames, channel), int(c.enabled), c.tiles_x, c.tiles_y,
-      nameOf(kLimitNames, c.limit_mode), c.fixed_limit, c.base, c.gain,
+      nameOf(kChannelNames, channel), nameOf(kStereoNames, stereo), int(c.enabled), c.tiles_x,
+      c.tiles_y, nameOf(kLimitNames, c.limit_mode), c.fixed_limit, c.base, c.gain,
       nameOf(kSigmaNames, c.sigma), nameOf(kMaximaNames, c.maxima), c.sigma_max, c.d_max);
 }
 
