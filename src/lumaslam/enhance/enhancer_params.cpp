@@ -22,6 +22,7 @@ const NameTable<ClipLimitMode> kLimitNames = {{"fixed", ClipLimitMode::kFixed},
 const NameTable<SigmaSource> kSigmaNames = {{"intensity", SigmaSource::kIntensity},
                                             {"gradient", SigmaSource::kGradient}};
 const NameTable<StereoMapping> kStereoNames = {{"independent", StereoMapping::kIndependent},
+                                               {"decisions", StereoMapping::kDecisions},
                                                {"shared", StereoMapping::kShared}};
 const NameTable<MaximaSource> kMaximaNames = {{"fixed", MaximaSource::kFixed},
                                               {"online", MaximaSource::kOnline}};

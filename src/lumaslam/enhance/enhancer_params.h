@@ -77,7 +77,7 @@ struct EnhancerParams {
   CompensationParams compensation;
   WorkChannel channel = WorkChannel::kValue;
   ClaheParams clahe;
-  StereoMapping stereo = StereoMapping::kShared;
+  StereoMapping stereo = StereoMapping::kDecisions;  // measured (docs/enhancement.md, Stereo)
 
   // Names accepted by `Enhancement.preset`.
   static const std::vector<std::string>& presetNames();
