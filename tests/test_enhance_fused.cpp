@@ -83,7 +83,7 @@ TEST(EnhanceFused, EqualsTheStageByStageReferenceWithinOneGrayLevel) {
   }
 }
 
-TEST(EnhanceFused, LaplacianVarianceEqualsOpenCvLaplacian) {
+TEST(EnhanceFused, FusedStatisticsEqualTheImageBasedOnes) {
   std::vector<cv::Mat> images;
   for (const auto& frame : realFrames()) {
     cv::Mat gray = frame.image;
@@ -104,6 +104,9 @@ TEST(EnhanceFused, LaplacianVarianceEqualsOpenCvLaplacian) {
     cv::meanStdDev(laplacian, mean, stddev);
     const double expected = stddev[0] * stddev[0];
     EXPECT_NEAR(laplacianVariance(image), expected, 1e-9 * std::max(1.0, expected))
+        << image.cols << "x" << image.rows;
+    const double gradient_sigma = ContrastImages(image, SigmaSource::kGradient).stats().sigma;
+    EXPECT_NEAR(gradientMagnitudeStd(image), gradient_sigma, 1e-9 * std::max(1.0, gradient_sigma))
         << image.cols << "x" << image.rows;
   }
 }

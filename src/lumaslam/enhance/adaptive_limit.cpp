@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdint>
 
 #include <opencv2/core/hal/intrin.hpp>
@@ -99,7 +100,83 @@ int laplacianRowSimd(const uchar* up, const uchar* row, const uchar* down, int c
   return x;
 }
 
+struct MagnitudeSums {
+  double sum = 0.0;
+  double squares = 0.0;
+  void add(float magnitude) {
+    const double m = magnitude;
+    sum += m;
+    squares += m * m;
+  }
+};
+
+// |(Sobel x, Sobel y)| (3x3, BORDER_REFLECT_101) at column x, as float like the image path.
+float gradientAt(const uchar* up, const uchar* row, const uchar* down, int x, int cols) {
+  const int l = reflect101(x - 1, cols);
+  const int r = reflect101(x + 1, cols);
+  const int gx = (up[r] + 2 * row[r] + down[r]) - (up[l] + 2 * row[l] + down[l]);
+  const int gy = (down[l] + 2 * down[x] + down[r]) - (up[l] + 2 * up[x] + up[r]);
+  return std::sqrt(static_cast<float>(gx * gx + gy * gy));
+}
+
+// Interior columns [1, cols - 1) of one row; returns the first column not done.
+int gradientRowSimd(const uchar* up, const uchar* row, const uchar* down, int cols,
+                    MagnitudeSums& sums) {
+  int x = 1;
+#if CV_SIMD && CV_SIMD_64F
+  constexpr int kLanes = cv::v_int16::nlanes;
+  cv::v_float64 sum = cv::vx_setzero_f64();
+  cv::v_float64 squares = cv::vx_setzero_f64();
+  const auto accumulate = [&](const cv::v_int32& gx, const cv::v_int32& gy) {
+    const cv::v_float32 m = cv::v_sqrt(cv::v_cvt_f32(gx * gx + gy * gy));
+    const cv::v_float64 lo = cv::v_cvt_f64(m);
+    const cv::v_float64 hi = cv::v_cvt_f64_high(m);
+    sum += lo + hi;
+    squares = cv::v_fma(lo, lo, cv::v_fma(hi, hi, squares));
+  };
+  for (; x + kLanes <= cols - 1; x += kLanes) {
+    const auto load = [x](const uchar* p, int dx) {
+      return cv::v_reinterpret_as_s16(cv::vx_load_expand(p + x + dx));
+    };
+    const cv::v_int16 gx = (load(up, 1) + cv::v_shl<1>(load(row, 1)) + load(down, 1)) -
+                           (load(up, -1) + cv::v_shl<1>(load(row, -1)) + load(down, -1));
+    const cv::v_int16 gy = (load(down, -1) + cv::v_shl<1>(load(down, 0)) + load(down, 1)) -
+                           (load(up, -1) + cv::v_shl<1>(load(up, 0)) + load(up, 1));
+    cv::v_int32 gx_lo;
+    cv::v_int32 gx_hi;
+    cv::v_int32 gy_lo;
+    cv::v_int32 gy_hi;
+    cv::v_expand(gx, gx_lo, gx_hi);
+    cv::v_expand(gy, gy_lo, gy_hi);
+    accumulate(gx_lo, gy_lo);
+    accumulate(gx_hi, gy_hi);
+  }
+  sums.sum += cv::v_reduce_sum(sum);
+  sums.squares += cv::v_reduce_sum(squares);
+#endif
+  for (; x < cols - 1; ++x) sums.add(gradientAt(up, row, down, x, cols));
+  return x;
+}
+
 }  // namespace
+
+double gradientMagnitudeStd(const cv::Mat& gray) {
+  CV_Assert(gray.type() == CV_8UC1 && !gray.empty());
+  MagnitudeSums sums;
+  for (int y = 0; y < gray.rows; ++y) {
+    const uchar* up = gray.ptr<uchar>(reflect101(y - 1, gray.rows));
+    const uchar* row = gray.ptr<uchar>(y);
+    const uchar* down = gray.ptr<uchar>(reflect101(y + 1, gray.rows));
+    sums.add(gradientAt(up, row, down, 0, gray.cols));
+    if (gray.cols > 1) {
+      gradientRowSimd(up, row, down, gray.cols, sums);
+      sums.add(gradientAt(up, row, down, gray.cols - 1, gray.cols));
+    }
+  }
+  const double n = static_cast<double>(gray.total());
+  const double mean = sums.sum / n;
+  return std::sqrt(std::max(sums.squares / n - mean * mean, 0.0));
+}
 
 double laplacianVariance(const cv::Mat& gray) {
   CV_Assert(gray.type() == CV_8UC1 && !gray.empty());
@@ -120,8 +197,9 @@ double laplacianVariance(const cv::Mat& gray) {
 }
 
 ContrastStats measureContrast(const cv::Mat& gray, SigmaSource source) {
-  if (source == SigmaSource::kGradient) return ContrastImages(gray, source).stats();
   CV_Assert(gray.type() == CV_8UC1 && !gray.empty());
+  if (source == SigmaSource::kGradient)
+    return {gradientMagnitudeStd(gray), laplacianVariance(gray)};
   cv::Scalar mean;
   cv::Scalar sigma;
   cv::meanStdDev(gray, mean, sigma);  // Eq. 12

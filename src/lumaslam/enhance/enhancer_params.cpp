@@ -129,7 +129,7 @@ EnhancerParams EnhancerParams::forPreset(const std::string& name) {
     p.clahe.tiles_y = 1;
     p.clahe.base = 6.0;
     p.clahe.gain = 3.0;
-    p.clahe.sigma = SigmaSource::kIntensity;  // as good as gradient here (-0.2 %), 2x faster
+    p.clahe.sigma = SigmaSource::kIntensity;  // as good as gradient (-0.2 %), cheaper
   } else {
     fail("unknown enhancement preset '{}' (expected one of: {})", name,
          fmt::join(presetNames(), ", "));
