@@ -230,6 +230,15 @@ TEST(EnhanceSettings, MissingKeysTakePresetDefaultsAndEveryKeyIsRead) {
   EXPECT_EQ(paper.compensation.weights, CompensationWeights::kSwapped);
   EXPECT_EQ(paper.clahe.limit_mode, ClipLimitMode::kLocal);
   EXPECT_EQ(paper.channel, WorkChannel::kValue);
+  for (const auto& [name, mapping] : {std::pair{"independent", StereoMapping::kIndependent},
+                                      std::pair{"decisions", StereoMapping::kDecisions},
+                                      std::pair{"shared", StereoMapping::kShared}}) {
+    EXPECT_EQ(
+        EnhancerParams::fromSettings(
+            core::SettingsFile::fromString(std::string("Enhancement.stereo: \"") + name + "\"\n"))
+            .stereo,
+        mapping);
+  }
   // Round trip: every parameter written by toSettingsText reads back unchanged.
   EnhancerParams custom = EnhancerParams::forPreset("full");
   custom.gate.epsilon = 0.07;
@@ -239,6 +248,7 @@ TEST(EnhanceSettings, MissingKeysTakePresetDefaultsAndEveryKeyIsRead) {
   custom.clahe.sigma_max = 55.5;
   custom.clahe.d_max = 1234.0;
   custom.channel = WorkChannel::kGray;
+  custom.stereo = StereoMapping::kDecisions;
   const auto back = EnhancerParams::fromSettings(
       core::SettingsFile::fromString(custom.toSettingsText(), "roundtrip"));
   EXPECT_EQ(back.toSettingsText(), custom.toSettingsText());
@@ -256,6 +266,7 @@ TEST(EnhanceSettings, WrongValuesNameTheFileAndKey) {
     }
   };
   expectError("Enhancement.preset: \"shiny\"\n", "Enhancement.preset");
+  expectError("Enhancement.stereo: \"both\"\n", "Enhancement.stereo");
   expectError("Enhancement.gate.epsilon: \"small\"\n", "Enhancement.gate.epsilon");
   expectError("Enhancement.clahe.tiles_x: 2.5\n", "Enhancement.clahe.tiles_x");
   expectError("Enhancement.clahe.tiles_y: 0\n", "Enhancement.clahe.tiles_y");

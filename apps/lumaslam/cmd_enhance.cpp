@@ -1,6 +1,7 @@
 // `lumaslam enhance`: enhance an image, a folder or a dataset (writes enhanced images and
 // previews, prints per-frame decisions), calibrate sigma_max / d_max over a sequence, and run
-// the measurements behind docs/enhancement.md (--evaluate-pairs, --evaluate-darkened).
+// the measurements behind docs/enhancement.md (--evaluate-pairs, --evaluate-darkened,
+// --evaluate-stereo).
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -19,6 +20,8 @@
 #include "lumaslam/core/settings_file.h"
 #include "lumaslam/enhance/enhancer.h"
 #include "lumaslam/enhance/evaluation.h"
+#include "lumaslam/io/dataset_reader.h"
+#include "lumaslam/stereo_enhancement.h"
 
 namespace lumaslam::cli {
 namespace {
@@ -34,6 +37,7 @@ struct EnhanceOptions {
   std::string calibrate;
   std::string evaluate_pairs;
   std::string evaluate_darkened;
+  std::string evaluate_stereo;
   std::vector<std::string> extra;  // settings files scored as extra candidates
   int max_frames = 0;
   int stride = 1;
@@ -209,10 +213,71 @@ int runEvaluateDarkened(const EnhanceOptions& options) {
   return 0;
 }
 
+// Stereo matches per frame (ORB 1000, StereoMatcher) with the pair unenhanced, enhanced
+// image by image, and enhanced with one shared plan, for a few presets.
+int runEvaluateStereo(const EnhanceOptions& options) {
+  auto reader = io::openDataset(options.evaluate_stereo);
+  const auto calibration = reader->calibration();
+  if (!calibration) fail("{}: no calibration, cannot rectify", options.evaluate_stereo);
+  const StereoMatchCounter counter(*calibration, feature::OrbSettings{});
+  struct Mode {
+    std::string name;
+    std::optional<EnhancerParams> params;
+    std::unique_ptr<enhance::Enhancer> left, right;
+    long matches = 0;
+  };
+  std::vector<Mode> modes;
+  modes.push_back({"off", std::nullopt, nullptr, nullptr});
+  for (const std::string preset : {"best", "paper", "clahe"}) {
+    for (const auto mapping :
+         {enhance::StereoMapping::kIndependent, enhance::StereoMapping::kDecisions,
+          enhance::StereoMapping::kShared}) {
+      EnhancerParams params = EnhancerParams::forPreset(preset);
+      params.stereo = mapping;
+      const char* how = mapping == enhance::StereoMapping::kShared      ? "shared"
+                        : mapping == enhance::StereoMapping::kDecisions ? "decisions"
+                                                                        : "independent";
+      modes.push_back({preset + " " + how, params, std::make_unique<enhance::Enhancer>(params),
+                       std::make_unique<enhance::Enhancer>(params)});
+    }
+  }
+  const int max_frames = options.max_frames > 0 ? options.max_frames : 20;
+  const int stride = std::max(options.stride, 1);
+  int frames = 0;
+  for (int index = 0; frames < max_frames; ++index) {
+    auto frame = reader->next();
+    if (!frame) break;
+    if (index % stride != 0) continue;
+    if (frame->right.empty())
+      fail("{}: frame {} has no right image", options.evaluate_stereo, index);
+    auto [left, right] = counter.rectify(frame->image, frame->right);
+    if (left.channels() == 3) {
+      cv::cvtColor(left, left, cv::COLOR_BGR2GRAY);
+      cv::cvtColor(right, right, cv::COLOR_BGR2GRAY);
+    }
+    for (auto& mode : modes) {
+      if (!mode.left) {
+        mode.matches += counter.matches(left, right);
+        continue;
+      }
+      const auto [left_gray, right_gray] = enhanceStereoPair(*mode.left, *mode.right, left, right);
+      mode.matches += counter.matches(left_gray, right_gray);
+    }
+    ++frames;
+  }
+  if (frames == 0) fail("{}: no frames", options.evaluate_stereo);
+  std::printf("| enhancement | stereo matches per frame (%d frames) |\n|---|---:|\n", frames);
+  for (const auto& mode : modes) {
+    std::printf("| %s | %.1f |\n", mode.name.c_str(), static_cast<double>(mode.matches) / frames);
+  }
+  return 0;
+}
+
 int run(const EnhanceOptions& options) {
   if (!options.calibrate.empty()) return runCalibrate(options);
   if (!options.evaluate_pairs.empty()) return runEvaluatePairs(options);
   if (!options.evaluate_darkened.empty()) return runEvaluateDarkened(options);
+  if (!options.evaluate_stereo.empty()) return runEvaluateStereo(options);
   return runEnhance(options);
 }
 
@@ -232,6 +297,9 @@ const bool registered = registerCommand(
                      "Score every preset on <scene>_A/_B exposure pairs under this folder");
       cmd.add_option("--evaluate-darkened", options->evaluate_darkened,
                      "Score every preset on darkened frames of this sequence");
+      cmd.add_option("--evaluate-stereo", options->evaluate_stereo,
+                     "Stereo matches per frame of this stereo dataset, pair enhanced "
+                     "independently or with one shared plan");
       cmd.add_option("--extra", options->extra, "Settings files scored as extra candidates");
       cmd.add_option("--max-frames", options->max_frames, "Use at most this many frames");
       cmd.add_option("--stride", options->stride, "Use every Nth frame");

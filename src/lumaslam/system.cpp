@@ -96,8 +96,11 @@ System::System(const io::Settings& settings, const SystemOptions& options)
   }
   if (enhancer_params.preset != "off") {
     enhancer_ = std::make_unique<enhance::Enhancer>(enhancer_params);
-    // The right image gets its own online statistics (the enhancer learns from every frame).
-    if (stereo) right_enhancer_ = std::make_unique<enhance::Enhancer>(enhancer_params);
+    // Enhancement.stereo "independent": the right image gets its own enhancer (and online
+    // statistics); otherwise it is enhanced with the left image's plan (rightGray).
+    if (stereo && enhancer_params.stereo == enhance::StereoMapping::kIndependent) {
+      right_enhancer_ = std::make_unique<enhance::Enhancer>(enhancer_params);
+    }
   }
   if (auto params = detect::detectorParamsFor(settings_.file.get(), options.detector)) {
     // makeDetector fails here, at startup, for a missing or invalid model / box file.
@@ -173,14 +176,15 @@ void System::shutdown() {
   if (loop_closer_) loop_closer_->shutdown();  // after the mapper: it feeds the closer
 }
 
-System::Images System::prepareImages(const cv::Mat& image, FrameTiming& timing) {
+System::Images System::prepareImages(const cv::Mat& image, FrameTiming& timing,
+                                     const enhance::EnhancementPlan* plan) {
   if (image.empty()) fail("empty image");
   if (image.depth() != CV_8U) fail("expected an 8-bit image, got depth {}", image.depth());
   const bool enhanced_for_detector = detector_params_ && detector_params_->image == "enhanced";
   if (enhancer_) {
     const auto start = Clock::now();
-    auto enhanced = enhancer_->enhance(image);
-    timing.enhance = msSince(start);
+    auto enhanced = plan ? enhancer_->apply(image, *plan) : enhancer_->enhance(image);
+    timing.enhance += msSince(start);
     return {enhanced.gray, enhanced_for_detector ? enhanced.colour : image};
   }
   if (image.channels() == 1) return {image, image};
@@ -189,8 +193,18 @@ System::Images System::prepareImages(const cv::Mat& image, FrameTiming& timing) 
   return {gray, image};
 }
 
-// Runs beside prepareImages() of the left image: without enhancement, that touches no state.
-cv::Mat System::rightGray(const cv::Mat& image, FrameTiming& timing) {
+// Runs beside prepareImages() of the left image: without enhancement, that touches no state;
+// with the left image's plan, only const (thread-safe) Enhancer calls.
+cv::Mat System::rightGray(const cv::Mat& image, FrameTiming& timing,
+                          const enhance::EnhancementPlan* left_plan) {
+  if (left_plan) {
+    const auto start = Clock::now();
+    const bool whole_plan = enhancer_->params().stereo == enhance::StereoMapping::kShared;
+    auto enhanced = whole_plan ? enhancer_->apply(image, *left_plan)
+                               : enhancer_->enhanceWith(image, *left_plan);
+    timing.enhance += msSince(start);
+    return enhanced.gray;
+  }
   if (!right_enhancer_) {
     FrameTiming unused;
     return prepareImages(image, unused).gray;
@@ -249,20 +263,32 @@ track::Frame System::buildStereoFrame(const SensorFrame& frame, FrameResult& res
          frame.dynamic_mask.cols, frame.dynamic_mask.rows, frame.image.cols, frame.image.rows);
   }
   const auto start = Clock::now();
-  // The right image is rectified and enhanced beside the left one (its own enhancer).
+  // The right image is rectified and enhanced beside the left one: with its own enhancer, or,
+  // for a plan shared with the left image, once the left plan is made.
+  const bool shared_plan = enhancer_ && !right_enhancer_;
   FrameTiming right_timing;
   auto right_job = std::async(std::launch::async, [&] {
     const cv::Mat right = rectifier_ ? rectifier_->rectifyRight(frame.right) : frame.right;
-    return rightGray(right, right_timing);
+    return shared_plan ? right : rightGray(right, right_timing);
   });
   const cv::Mat left = rectifier_ ? rectifier_->rectifyLeft(frame.image) : frame.image;
   const cv::Mat mask = rectifier_ && !frame.dynamic_mask.empty()
                            ? rectifier_->rectifyLeft(frame.dynamic_mask)
                            : frame.dynamic_mask;
-  const auto images = prepareImages(left, timing);
+  std::optional<enhance::EnhancementPlan> plan;
+  std::future<cv::Mat> right_enhanced;
+  if (shared_plan) {
+    const auto plan_start = Clock::now();
+    plan = enhancer_->plan(left);
+    timing.enhance += msSince(plan_start);
+    right_enhanced = std::async(std::launch::async, [&, right = right_job.get()] {
+      return rightGray(right, right_timing, &*plan);
+    });
+  }
+  const auto images = prepareImages(left, timing, plan ? &*plan : nullptr);
   pushForDetection(frame, images.detector);
   const double left_enhance_ms = timing.enhance;
-  const cv::Mat gray_right = right_job.get();
+  const cv::Mat gray_right = shared_plan ? right_enhanced.get() : right_job.get();
   timing.enhance += right_timing.enhance;  // work of both, partly overlapped
 
   return withoutDynamicFeatures(frame, cv::Mat(), result, [&] {

@@ -25,7 +25,8 @@ struct DetectorParams;
 }  // namespace detect
 namespace enhance {
 class Enhancer;
-}
+struct EnhancementPlan;
+}  // namespace enhance
 namespace io {
 struct FrameData;
 }
@@ -121,9 +122,12 @@ class System {
     cv::Mat gray;      // for ORB features
     cv::Mat detector;  // for the detector: raw or enhanced colour (Detector.image)
   };
-  Images prepareImages(const cv::Mat& image, FrameTiming& timing);
+  // With `plan`, the image is enhanced with it instead of its own (stereo shared plans).
+  Images prepareImages(const cv::Mat& image, FrameTiming& timing,
+                       const enhance::EnhancementPlan* plan = nullptr);
   cv::Mat depthInMetres(const SensorFrame& frame) const;
-  cv::Mat rightGray(const cv::Mat& image, FrameTiming& timing);  // stereo right image
+  cv::Mat rightGray(const cv::Mat& image, FrameTiming& timing,  // stereo right image
+                    const enhance::EnhancementPlan* left_plan = nullptr);
   track::Frame buildStereoFrame(const SensorFrame& frame, FrameResult& result);
   SE3 toCalibratedCamera(const SE3& T_w_c) const;  // identity unless rectifying
   Trajectory toCalibratedCamera(Trajectory trajectory) const;
@@ -139,7 +143,7 @@ class System {
   std::shared_ptr<loop::PlaceRecognition> places_;  // the Map's KeyFrameIndex
   std::unique_ptr<loop::LoopCloser> loop_closer_;   // fed by the local mapper
   std::unique_ptr<enhance::Enhancer> enhancer_;
-  std::unique_ptr<enhance::Enhancer> right_enhancer_;   // stereo: the right image's own
+  std::unique_ptr<enhance::Enhancer> right_enhancer_;   // stereo "independent": the right's own
   std::unique_ptr<camera::StereoRectifier> rectifier_;  // unrectified stereo pairs only
   std::unique_ptr<detect::DetectorParams> detector_params_;
   std::unique_ptr<detect::DetectionWorker> detector_;

@@ -26,7 +26,14 @@ class ContrastImages {
   cv::Mat laplacian_;    // 16S
 };
 
+// Whole-image statistics, each a single pass without intermediate images (intensity sigma:
+// meanStdDev; gradient sigma and d: fused SIMD passes); equal to
+// ContrastImages(gray, source).stats() up to rounding.
 ContrastStats measureContrast(const cv::Mat& gray, SigmaSource source);
+// Eq. 13: variance of cv::Laplacian(gray, CV_16S) (3x3 kernel, BORDER_REFLECT_101).
+double laplacianVariance(const cv::Mat& gray);
+// Std of the Sobel (3x3, BORDER_REFLECT_101) gradient magnitude, the `gradient` sigma.
+double gradientMagnitudeStd(const cv::Mat& gray);
 
 class ClipLimitModel {
  public:

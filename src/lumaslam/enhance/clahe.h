@@ -4,6 +4,7 @@
 // per-tile 256-bin histograms on the image padded (BORDER_REFLECT_101) to a multiple of the
 // grid, clipping with uniform redistribution, CDF lookup tables and bilinear interpolation
 // between the four nearest tile centres. Unlike cv::CLAHE, every tile may have its own limit.
+// The stages are public so the Enhancer can fold brightness compensation into the tables.
 #include <opencv2/core.hpp>
 
 namespace lumaslam::enhance {
@@ -27,15 +28,24 @@ class Clahe {
   };
   Tiling tiling(const cv::Mat& gray) const;
 
+  // Eq. 9: CV_32SC1, one 256-bin row per tile (row ty * tiles_x + tx).
+  cv::Mat tileHistograms(const Tiling& tiling) const;
+  // Eq. 10, 14-15 and the CDF: one 8-bit table per tile (CV_8UC1, tiles x 256) from the
+  // histograms of tiles of `tile_pixels` pixels. `histograms` is clipped in place.
+  cv::Mat lookupTables(cv::Mat& histograms, const cv::Mat& tile_limits, int tile_pixels) const;
+  // Eq. 16-19: maps `gray` through the per-tile tables, `tile` being the tile size of the
+  // tiling the tables came from. With one tile this is a plain table lookup.
+  void interpolate(const cv::Mat& gray, const cv::Mat& luts, cv::Size tile, cv::Mat& out) const;
+
   int tilesX() const { return tiles_x_; }
   int tilesY() const { return tiles_y_; }
 
  private:
-  cv::Mat tileLookupTables(const Tiling& tiling, const cv::Mat& tile_limits) const;
-  cv::Mat interpolate(const cv::Mat& gray, const cv::Mat& luts, cv::Size tile) const;
-
   int tiles_x_;
   int tiles_y_;
 };
+
+// Adds the 256-bin histogram of an 8-bit single-channel image (or ROI) to `hist`.
+void accumulateHistogram(const cv::Mat& gray, int* hist);
 
 }  // namespace lumaslam::enhance

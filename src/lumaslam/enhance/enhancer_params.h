@@ -36,6 +36,14 @@ enum class MaximaSource {
   kOnline,  // running maxima over the frames seen, seeded with sigma_max / d_max
 };
 
+// How the two images of a stereo pair are enhanced.
+enum class StereoMapping {
+  kIndependent,  // each image its own plan (gate, table, limit): brightness may differ
+  kDecisions,    // the left image's decisions (gate, Eq. 4 table, CLAHE limits) for both,
+                 // CLAHE tables from each image's own histograms
+  kShared,       // the left image's whole plan (tables too) applied to both
+};
+
 struct QualityGateParams {
   bool enabled = true;  // false: every frame counts as Q = 1 (needs compensation)
   double epsilon = 0.12;
@@ -69,6 +77,7 @@ struct EnhancerParams {
   CompensationParams compensation;
   WorkChannel channel = WorkChannel::kValue;
   ClaheParams clahe;
+  StereoMapping stereo = StereoMapping::kDecisions;  // measured (docs/enhancement.md, Stereo)
 
   // Names accepted by `Enhancement.preset`.
   static const std::vector<std::string>& presetNames();

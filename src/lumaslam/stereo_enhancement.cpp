@@ -1,0 +1,67 @@
+#include "lumaslam/stereo_enhancement.h"
+
+#include <algorithm>
+#include <array>
+
+#include "lumaslam/core/error.h"
+
+namespace lumaslam {
+namespace {
+
+camera::PinholeCamera cameraOf(const io::CameraCalibration& c) {
+  std::array<double, 5> distortion{};
+  for (std::size_t i = 0; i < std::min<std::size_t>(5, c.distortion.size()); ++i) {
+    distortion[i] = c.distortion[i];
+  }
+  return camera::PinholeCamera(c.fx, c.fy, c.cx, c.cy, {c.resolution.width, c.resolution.height},
+                               distortion);
+}
+
+camera::StereoRectifier rectifierOf(const io::CalibrationHint& calibration) {
+  if (!calibration.right || !calibration.T_left_right) {
+    fail("stereo match count: the dataset has no stereo calibration (right camera, T_left_right)");
+  }
+  return camera::StereoRectifier(cameraOf(calibration.left), cameraOf(*calibration.right),
+                                 *calibration.T_left_right);
+}
+
+feature::StereoMatcherParams matcherParams(const camera::StereoRectifier& rectifier) {
+  feature::StereoMatcherParams params;
+  params.bf = rectifier.bf();
+  params.minDepth = rectifier.baseline();
+  return params;
+}
+
+}  // namespace
+
+std::pair<cv::Mat, cv::Mat> enhanceStereoPair(enhance::Enhancer& left_enhancer,
+                                              enhance::Enhancer& right_enhancer,
+                                              const cv::Mat& left, const cv::Mat& right) {
+  const auto mapping = left_enhancer.params().stereo;
+  if (mapping == enhance::StereoMapping::kIndependent) {
+    return {left_enhancer.enhance(left).gray, right_enhancer.enhance(right).gray};
+  }
+  const enhance::EnhancementPlan plan = left_enhancer.plan(left);
+  const cv::Mat left_gray = left_enhancer.apply(left, plan).gray;
+  if (mapping == enhance::StereoMapping::kShared) {
+    return {left_gray, left_enhancer.apply(right, plan).gray};
+  }
+  return {left_gray, left_enhancer.enhanceWith(right, plan).gray};
+}
+
+StereoMatchCounter::StereoMatchCounter(const io::CalibrationHint& calibration,
+                                       const feature::OrbSettings& orb)
+    : rectifier_(rectifierOf(calibration)),
+      extractor_(orb),
+      matcher_(matcherParams(rectifier_), extractor_.levels()) {}
+
+std::pair<cv::Mat, cv::Mat> StereoMatchCounter::rectify(const cv::Mat& left,
+                                                        const cv::Mat& right) const {
+  return rectifier_.rectify(left, right);
+}
+
+int StereoMatchCounter::matches(const cv::Mat& left_gray, const cv::Mat& right_gray) const {
+  return matcher_.match(extractor_.extract(left_gray), extractor_.extract(right_gray)).matched;
+}
+
+}  // namespace lumaslam
