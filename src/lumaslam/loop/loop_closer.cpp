@@ -55,8 +55,10 @@ LoopCloser::LoopCloser(std::shared_ptr<map::Map> map, const Vocabulary& vocabula
       database_(database),
       params_(params),
       pause_mapping_(std::move(pause_mapping)),
-      detector_(database_, *map_, params.detector) {
-  if (params_.threaded) thread_ = std::thread([this] { run(); });
+      detector_(database_, *map_, params.detector),
+      queue_([this](const auto& keyframe) { process(keyframe); },
+             {.capacity = params.queue_capacity}) {
+  if (params_.threaded) queue_.startThread();
 }
 
 LoopCloser::~LoopCloser() {
@@ -64,63 +66,23 @@ LoopCloser::~LoopCloser() {
 }
 
 void LoopCloser::shutdown() {
-  {
-    std::lock_guard lock(queue_mutex_);
-    stopping_ = true;
-  }
-  queue_changed_.notify_all();
-  if (thread_.joinable()) thread_.join();
+  queue_.shutdown();
 }
 
 void LoopCloser::insertKeyFrame(std::shared_ptr<map::KeyFrame> keyframe) {
-  {
-    std::lock_guard lock(queue_mutex_);
-    queue_.push_back(std::move(keyframe));
-    while (queue_.size() > params_.queue_capacity) queue_.pop_front();
-  }
-  queue_changed_.notify_all();
+  queue_.push(std::move(keyframe));
 }
 
 void LoopCloser::processPending() {
-  while (true) {
-    std::shared_ptr<map::KeyFrame> keyframe;
-    {
-      std::lock_guard lock(queue_mutex_);
-      if (queue_.empty()) return;
-      keyframe = queue_.front();
-      queue_.pop_front();
-    }
-    process(keyframe);
-  }
+  queue_.processPending();
 }
 
 void LoopCloser::waitUntilIdle() {
-  std::unique_lock lock(queue_mutex_);
-  queue_changed_.wait(lock, [this] { return (queue_.empty() && !busy_) || !thread_.joinable(); });
-}
-
-void LoopCloser::run() {
-  while (true) {
-    std::shared_ptr<map::KeyFrame> keyframe;
-    {
-      std::unique_lock lock(queue_mutex_);
-      queue_changed_.wait(lock, [this] { return stopping_ || !queue_.empty(); });
-      if (queue_.empty()) break;
-      keyframe = queue_.front();
-      queue_.pop_front();
-      busy_ = true;
-    }
-    process(keyframe);
-    {
-      std::lock_guard lock(queue_mutex_);
-      busy_ = false;
-    }
-    queue_changed_.notify_all();
-  }
+  queue_.waitUntilIdle();
 }
 
 std::vector<ClosedLoop> LoopCloser::closedLoops() const {
-  std::lock_guard lock(queue_mutex_);
+  std::lock_guard lock(closed_mutex_);
   return closed_;
 }
 
@@ -151,7 +113,7 @@ void LoopCloser::process(const std::shared_ptr<map::KeyFrame>& keyframe) {
                closed.current, closed.loop, closed.inliers, 1000.0 * closed.correction_m,
                closed.correction_deg);
   {
-    std::lock_guard lock(queue_mutex_);
+    std::lock_guard lock(closed_mutex_);
     closed_.push_back(closed);
   }
   last_loop_keyframe_ = keyframe->id();

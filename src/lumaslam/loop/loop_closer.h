@@ -17,15 +17,13 @@
 //     It runs in the closer's thread and stops early on abortGlobalBundleAdjustment().
 // A rejected candidate leaves the map untouched.
 #include <atomic>
-#include <condition_variable>
-#include <deque>
 #include <functional>
 #include <memory>
 #include <mutex>
 #include <optional>
-#include <thread>
 #include <vector>
 
+#include "lumaslam/core/work_queue.h"
 #include "lumaslam/feature/hamming.h"
 #include "lumaslam/loop/keyframe_database.h"
 #include "lumaslam/loop/loop_detector.h"
@@ -106,7 +104,6 @@ class LoopCloser {
   int rejectedCandidates() const { return rejected_; }
 
  private:
-  void run();
   void process(const std::shared_ptr<map::KeyFrame>& keyframe);
   std::optional<KeyFrameBow> bowOf(const map::KeyFrame& keyframe) const;
 
@@ -118,15 +115,11 @@ class LoopCloser {
   LoopDetector detector_;
   map::Id last_loop_keyframe_ = 0;
 
-  mutable std::mutex queue_mutex_;
-  std::condition_variable queue_changed_;
-  std::deque<std::shared_ptr<map::KeyFrame>> queue_;
-  bool busy_ = false;
-  bool stopping_ = false;
+  mutable std::mutex closed_mutex_;
   std::vector<ClosedLoop> closed_;
   std::atomic<int> rejected_{0};
   std::atomic<bool> abort_global_ba_{false};
-  std::thread thread_;
+  core::WorkQueue<std::shared_ptr<map::KeyFrame>> queue_;  // last: its thread uses the above
 };
 
 }  // namespace lumaslam::loop
