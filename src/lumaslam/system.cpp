@@ -148,6 +148,7 @@ System::System(const io::Settings& settings, const SystemOptions& options)
                                                    mapper_params);
   track::TrackerParams tracker_params;
   tracker_params.max_frames_between_keyframes = std::max(1, static_cast<int>(settings_.camera.fps));
+  tracker_params.inlier_reference_half_life = tracker_params.max_frames_between_keyframes;
   if (stereo) {
     // ORB-SLAM starts a stereo map from a frame with > 500 keypoints, of which typically half
     // have a stereo match; 500 matches would delay EuRoC V1_01 by 6 frames with enhancement

@@ -98,8 +98,10 @@ LoopCloser::LoopCloser(std::shared_ptr<map::Map> map, const Vocabulary& vocabula
       database_(database),
       params_(params),
       pause_mapping_(std::move(pause_mapping)),
-      detector_(database_, *map_, params.detector) {
-  if (params_.threaded) thread_ = std::thread([this] { run(); });
+      detector_(database_, *map_, params.detector),
+      queue_([this](const auto& keyframe) { process(keyframe); },
+             {.capacity = params.queue_capacity}) {
+  if (params_.threaded) queue_.startThread();
 }
 
 LoopCloser::~LoopCloser() {
@@ -107,13 +109,9 @@ LoopCloser::~LoopCloser() {
 }
 
 void LoopCloser::shutdown() {
-  {
-    std::lock_guard lock(queue_mutex_);
-    stopping_ = true;
-    abort_global_ba_ = true;
-  }
-  queue_changed_.notify_all();
-  if (thread_.joinable()) thread_.join();
+  stopping_ = true;
+  abort_global_ba_ = true;
+  queue_.shutdown();
   stopGlobalBundleAdjustment();
 }
 
@@ -126,7 +124,7 @@ void LoopCloser::stopGlobalBundleAdjustment() {
 void LoopCloser::startGlobalBundleAdjustment() {
   stopGlobalBundleAdjustment();  // never two at once (correctLoop has normally joined it)
   {
-    std::lock_guard lock(queue_mutex_);
+    std::lock_guard lock(global_ba_mutex_);
     if (stopping_ && params_.threaded) return;
     abort_global_ba_ = false;
     global_ba_running_ = true;
@@ -142,7 +140,7 @@ void LoopCloser::startGlobalBundleAdjustment() {
 bool LoopCloser::runGlobalBundleAdjustment() {
   const bool done = globalBundleAdjustment();
   {
-    std::lock_guard lock(queue_mutex_);
+    std::lock_guard lock(global_ba_mutex_);
     global_ba_running_ = false;
     if (done) {
       ++global_ba_stats_.completed;
@@ -150,66 +148,31 @@ bool LoopCloser::runGlobalBundleAdjustment() {
       ++global_ba_stats_.aborted;
     }
   }
-  queue_changed_.notify_all();
+  global_ba_changed_.notify_all();
   return done;
 }
 
 GlobalBAStats LoopCloser::globalBundleAdjustmentStats() const {
-  std::lock_guard lock(queue_mutex_);
+  std::lock_guard lock(global_ba_mutex_);
   return global_ba_stats_;
 }
 
 void LoopCloser::insertKeyFrame(std::shared_ptr<map::KeyFrame> keyframe) {
-  {
-    std::lock_guard lock(queue_mutex_);
-    queue_.push_back(std::move(keyframe));
-    while (queue_.size() > params_.queue_capacity) queue_.pop_front();
-  }
-  queue_changed_.notify_all();
+  queue_.push(std::move(keyframe));
 }
 
 void LoopCloser::processPending() {
-  while (true) {
-    std::shared_ptr<map::KeyFrame> keyframe;
-    {
-      std::lock_guard lock(queue_mutex_);
-      if (queue_.empty()) return;
-      keyframe = queue_.front();
-      queue_.pop_front();
-    }
-    process(keyframe);
-  }
+  queue_.processPending();
 }
 
 void LoopCloser::waitUntilIdle() {
-  std::unique_lock lock(queue_mutex_);
-  queue_changed_.wait(lock, [this] {
-    return (queue_.empty() && !busy_ && !global_ba_running_) || !thread_.joinable();
-  });
-}
-
-void LoopCloser::run() {
-  while (true) {
-    std::shared_ptr<map::KeyFrame> keyframe;
-    {
-      std::unique_lock lock(queue_mutex_);
-      queue_changed_.wait(lock, [this] { return stopping_ || !queue_.empty(); });
-      if (queue_.empty()) break;
-      keyframe = queue_.front();
-      queue_.pop_front();
-      busy_ = true;
-    }
-    process(keyframe);
-    {
-      std::lock_guard lock(queue_mutex_);
-      busy_ = false;
-    }
-    queue_changed_.notify_all();
-  }
+  queue_.waitUntilIdle();  // a keyframe being handled may have started a global BA
+  std::unique_lock lock(global_ba_mutex_);
+  global_ba_changed_.wait(lock, [this] { return !global_ba_running_; });
 }
 
 std::vector<ClosedLoop> LoopCloser::closedLoops() const {
-  std::lock_guard lock(queue_mutex_);
+  std::lock_guard lock(closed_mutex_);
   return closed_;
 }
 
@@ -241,7 +204,7 @@ void LoopCloser::process(const std::shared_ptr<map::KeyFrame>& keyframe) {
       closed.current, closed.loop, closed.inliers, 1000.0 * closed.correction_m,
       closed.correction_deg, closed.correction_scale);
   {
-    std::lock_guard lock(queue_mutex_);
+    std::lock_guard lock(closed_mutex_);
     closed_.push_back(closed);
   }
   last_loop_keyframe_ = keyframe->id();

@@ -26,7 +26,6 @@
 // A rejected candidate leaves the map untouched.
 #include <atomic>
 #include <condition_variable>
-#include <deque>
 #include <functional>
 #include <memory>
 #include <mutex>
@@ -34,6 +33,7 @@
 #include <thread>
 #include <vector>
 
+#include "lumaslam/core/work_queue.h"
 #include "lumaslam/feature/hamming.h"
 #include "lumaslam/loop/keyframe_database.h"
 #include "lumaslam/loop/loop_detector.h"
@@ -133,7 +133,6 @@ class LoopCloser {
   int rejectedCandidates() const { return rejected_; }
 
  private:
-  void run();
   void process(const std::shared_ptr<map::KeyFrame>& keyframe);
   std::optional<KeyFrameBow> bowOf(const map::KeyFrame& keyframe) const;
   std::optional<LoopMatch> computeSim3Loop(const std::shared_ptr<map::KeyFrame>& current,
@@ -153,18 +152,17 @@ class LoopCloser {
   LoopDetector detector_;
   map::Id last_loop_keyframe_ = 0;
 
-  mutable std::mutex queue_mutex_;
-  std::condition_variable queue_changed_;
-  std::deque<std::shared_ptr<map::KeyFrame>> queue_;
-  bool busy_ = false;
-  bool stopping_ = false;
+  mutable std::mutex closed_mutex_;
   std::vector<ClosedLoop> closed_;
   std::atomic<int> rejected_{0};
   std::atomic<bool> abort_global_ba_{false};
-  bool global_ba_running_ = false;  // guarded by queue_mutex_
-  GlobalBAStats global_ba_stats_;   // guarded by queue_mutex_
+  std::atomic<bool> stopping_{false};
+  mutable std::mutex global_ba_mutex_;
+  std::condition_variable global_ba_changed_;
+  bool global_ba_running_ = false;  // guarded by global_ba_mutex_
+  GlobalBAStats global_ba_stats_;   // guarded by global_ba_mutex_
   std::thread global_ba_thread_;    // started and joined by the closer's thread (or shutdown)
-  std::thread thread_;
+  core::WorkQueue<std::shared_ptr<map::KeyFrame>> queue_;  // last: its thread uses the above
 };
 
 }  // namespace lumaslam::loop

@@ -32,8 +32,14 @@ double medianSceneDepth(const map::KeyFrame& keyframe) {
 LocalMapper::LocalMapper(std::shared_ptr<map::Map> map, const track::FrameCamera& camera,
                          std::shared_ptr<const map::ScalePyramid> pyramid,
                          const LocalMapperParams& params)
-    : map_(std::move(map)), camera_(camera), pyramid_(std::move(pyramid)), params_(params) {
-  if (params_.threaded) thread_ = std::thread([this] { run(); });
+    : map_(std::move(map)),
+      camera_(camera),
+      pyramid_(std::move(pyramid)),
+      params_(params),
+      // A waiting keyframe stops the running bundle adjustment; taking one clears the request.
+      queue_([this](const auto& keyframe) { process(keyframe); },
+             {.on_push = [this] { abort_ba_ = true; }, .on_take = [this] { abort_ba_ = false; }}) {
+  if (params_.threaded) queue_.startThread();
 }
 
 LocalMapper::~LocalMapper() {
@@ -41,71 +47,27 @@ LocalMapper::~LocalMapper() {
 }
 
 void LocalMapper::shutdown() {
-  {
-    std::lock_guard lock(queue_mutex_);
-    stopping_ = true;
-  }
-  queue_changed_.notify_all();
-  if (thread_.joinable()) thread_.join();
+  queue_.shutdown();
 }
 
 void LocalMapper::insertKeyFrame(std::shared_ptr<map::KeyFrame> keyframe) {
-  {
-    std::lock_guard lock(queue_mutex_);
-    queue_.push_back(std::move(keyframe));
-    abort_ba_ = true;
-  }
-  queue_changed_.notify_all();
+  queue_.push(std::move(keyframe));
 }
 
 bool LocalMapper::acceptsKeyFrames() const {
-  std::lock_guard lock(queue_mutex_);
-  return !busy_ && queue_.empty();
+  return queue_.idle();
 }
 
 std::size_t LocalMapper::queuedKeyFrames() const {
-  std::lock_guard lock(queue_mutex_);
   return queue_.size();
 }
 
 void LocalMapper::processPending() {
-  while (true) {
-    std::shared_ptr<map::KeyFrame> keyframe;
-    {
-      std::lock_guard lock(queue_mutex_);
-      if (queue_.empty()) return;
-      keyframe = queue_.front();
-      queue_.pop_front();
-      abort_ba_ = false;
-    }
-    process(keyframe);
-  }
+  queue_.processPending();
 }
 
 void LocalMapper::waitUntilIdle() {
-  std::unique_lock lock(queue_mutex_);
-  queue_changed_.wait(lock, [this] { return (queue_.empty() && !busy_) || !thread_.joinable(); });
-}
-
-void LocalMapper::run() {
-  while (true) {
-    std::shared_ptr<map::KeyFrame> keyframe;
-    {
-      std::unique_lock lock(queue_mutex_);
-      queue_changed_.wait(lock, [this] { return stopping_ || !queue_.empty(); });
-      if (queue_.empty()) break;  // stopping, nothing left
-      keyframe = queue_.front();
-      queue_.pop_front();
-      busy_ = true;
-      abort_ba_ = false;
-    }
-    process(keyframe);
-    {
-      std::lock_guard lock(queue_mutex_);
-      busy_ = false;
-    }
-    queue_changed_.notify_all();
-  }
+  queue_.waitUntilIdle();
 }
 
 void LocalMapper::process(const std::shared_ptr<map::KeyFrame>& keyframe) {

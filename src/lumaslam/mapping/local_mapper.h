@@ -5,14 +5,12 @@
 // Threaded: its own thread fed through a queue. Sequential (System.sequential): the caller
 // runs processPending() after each tracked frame, outside the tracker's map lock.
 #include <atomic>
-#include <condition_variable>
-#include <deque>
 #include <functional>
 #include <list>
 #include <memory>
 #include <mutex>
-#include <thread>
 
+#include "lumaslam/core/work_queue.h"
 #include "lumaslam/feature/scale_levels.h"
 #include "lumaslam/map/map.h"
 #include "lumaslam/track/frame_camera.h"
@@ -59,7 +57,6 @@ class LocalMapper : public track::KeyFrameSink {
   std::unique_lock<std::mutex> pauseProcessing() { return std::unique_lock(processing_mutex_); }
 
  private:
-  void run();
   void process(const std::shared_ptr<map::KeyFrame>& keyframe);
   void processLocked(const std::shared_ptr<map::KeyFrame>& keyframe);
   void attachObservations(const std::shared_ptr<map::KeyFrame>& keyframe);
@@ -75,15 +72,10 @@ class LocalMapper : public track::KeyFrameSink {
   LocalMapperParams params_;
 
   std::mutex processing_mutex_;  // held while a keyframe is processed
-  mutable std::mutex queue_mutex_;
-  std::condition_variable queue_changed_;
-  std::deque<std::shared_ptr<map::KeyFrame>> queue_;
-  bool busy_ = false;
-  bool stopping_ = false;
   std::atomic<bool> abort_ba_{false};
   std::atomic<std::size_t> processed_{0};
   std::list<std::shared_ptr<map::MapPoint>> recent_points_;
-  std::thread thread_;
+  core::WorkQueue<std::shared_ptr<map::KeyFrame>> queue_;  // last: its thread uses the above
 };
 
 }  // namespace lumaslam::mapping

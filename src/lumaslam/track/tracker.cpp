@@ -1,6 +1,7 @@
 #include "lumaslam/track/tracker.h"
 
 #include <algorithm>
+#include <cmath>
 #include <map>
 #include <numeric>
 #include <unordered_set>
@@ -50,16 +51,16 @@ TrackingOutcome Tracker::track(Frame frame) {
   } else {
     updateLastFrame();
     if (state_ == TrackingState::Ok) {
-      ok = (velocity_ && trackWithMotionModel()) ||
-           (last_.T_c_w && trackFromPose(*last_.T_c_w, params_.motion_search_radius * 2.0F));
+      ok = ((velocity_ && trackWithMotionModel()) ||
+            (last_.T_c_w && trackFromPose(*last_.T_c_w, params_.motion_search_radius * 2.0F))) &&
+           trackLocalMap();
     } else {
       // Lost: look for the map around the last pose we had (short blackouts, fast motion),
       // then anywhere in the map by place recognition (ORB-SLAM's Relocalization).
-      ok = last_.T_c_w && trackFromPose(*last_.T_c_w, params_.lost_search_radius);
-      if (!ok) outcome.relocalized = ok = relocalize();
+      ok =
+          last_.T_c_w && trackFromPose(*last_.T_c_w, params_.lost_search_radius) && trackLocalMap();
+      if (!ok) outcome.relocalized = ok = relocalize() && trackLocalMap();
     }
-    if (ok) ok = trackLocalMap();
-    outcome.relocalized = outcome.relocalized && ok;
     if (state_ != TrackingState::NotInitialized)
       state_ = ok ? TrackingState::Ok : TrackingState::Lost;
     if (ok && needNewKeyFrame()) {
@@ -80,6 +81,9 @@ TrackingOutcome Tracker::track(Frame frame) {
     }
     if (!current_.reference) current_.reference = reference_;
     recorder_.recordTracked(current_.timestamp, *current_.T_c_w, current_.reference);
+    // The map's first frame has no local-map inliers yet: the next tracked frame sets them.
+    last_tracked_inliers_ = previous == TrackingState::NotInitialized ? 0 : inliers_;
+    last_tracked_frame_ = current_.index;
     last_T_l_r_ = *current_.T_c_w * current_.reference->T_w_c();
     outcome.T_w_c = current_.T_c_w->inverse();
   } else {
@@ -464,7 +468,22 @@ bool Tracker::trackLocalMap() {
     point->increaseFound();
     if (point->observationCount() > 0) ++inliers_;
   }
-  return inliers_ >= params_.min_local_map_inliers;
+  return enoughInliers();
+}
+
+bool Tracker::enoughInliers() const {
+  if (inliers_ < params_.min_local_map_inliers) return false;
+  if (last_tracked_inliers_ == 0) return true;
+  const double frames_since = current_.index > last_tracked_frame_
+                                  ? static_cast<double>(current_.index - last_tracked_frame_)
+                                  : 1.0;
+  const double reference =
+      last_tracked_inliers_ * std::exp2(-std::max(0.0, frames_since - 1.0) /
+                                        std::max(1, params_.inlier_reference_half_life));
+  if (inliers_ >= params_.min_inlier_fraction_of_last * reference) return true;
+  spdlog::debug("frame {}: {} local-map inliers, under {:.2f} of the last tracked frame's {:.0f}",
+                current_.index, inliers_, params_.min_inlier_fraction_of_last, reference);
+  return false;
 }
 
 // Missed detections: map points that keep failing the chi-square test near a recent box of

@@ -27,7 +27,14 @@ struct TrackerParams {
   int max_frames_between_keyframes = 30;  // camera fps, as ORB-SLAM
   int min_frames_between_keyframes = 0;
   int min_local_map_inliers = 30;
-  float motion_search_radius = 7.0F;  // pixels at level 0 (doubled on a second try)
+  // A frame also needs this fraction of the local-map inliers of the last tracked frame, a
+  // reference that halves every `inlier_reference_half_life` frames while lost. Camera motion
+  // in a static scene never lost 2/3 of the matches from one frame to the next in our runs
+  // (lowest 0.67, low-light); a sudden sensor event (x5 over-exposure) keeps ~20 %, matched at
+  // displaced places, and gave poses 2-3 cm off with 100 inliers (docs/accuracy.md).
+  double min_inlier_fraction_of_last = 1.0 / 3.0;
+  int inlier_reference_half_life = 30;  // frames (the System: camera fps, i.e. one second)
+  float motion_search_radius = 7.0F;    // pixels at level 0 (doubled on a second try)
   float local_map_search_radius = 8.0F;
   float lost_search_radius = 40.0F;  // window when trying to recover from the last pose
   int max_local_keyframes = 80;
@@ -72,6 +79,7 @@ class Tracker {
   bool trackFromPose(const SE3& T_c_w_prior, float radius);
   bool relocalize();
   bool trackLocalMap();
+  bool enoughInliers() const;
   bool needNewKeyFrame() const;
   void createNewKeyFrame();
 
@@ -105,6 +113,8 @@ class Tracker {
   std::vector<std::shared_ptr<map::MapPoint>> local_points_;
   std::vector<std::shared_ptr<map::MapPoint>> temporary_points_;  // last frame's VO points
   int inliers_ = 0;
+  int last_tracked_inliers_ = 0;  // local-map inliers of the last tracked frame; 0 = none yet
+  std::size_t last_tracked_frame_ = 0;
   DynamicPointMemory dynamic_memory_;
   TrajectoryRecorder recorder_;
   std::unique_ptr<MonocularInitializer> monocular_initializer_;

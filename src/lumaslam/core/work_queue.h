@@ -1,0 +1,124 @@
+#pragma once
+// A FIFO of work items handled one at a time by a handler, either in the queue's own thread
+// (startThread) or in the owner's thread (processPending, the System's sequential mode). The
+// keyframe queues of LocalMapper and LoopCloser. The owner starts the thread once the state its
+// handler uses is built, and calls shutdown() before destroying that state.
+#include <condition_variable>
+#include <cstddef>
+#include <deque>
+#include <functional>
+#include <mutex>
+#include <optional>
+#include <thread>
+#include <utility>
+
+namespace lumaslam::core {
+
+template <typename T>
+class WorkQueue {
+ public:
+  struct Options {
+    std::size_t capacity = 0;  // 0: unbounded; beyond it push() drops the oldest item
+    // Called with the queue's lock held, after an item is queued / before one is handled.
+    std::function<void()> on_push = {};
+    std::function<void()> on_take = {};
+  };
+
+  explicit WorkQueue(std::function<void(T&)> handler, Options options = {})
+      : handler_(std::move(handler)), options_(std::move(options)) {}
+  ~WorkQueue() { shutdown(); }
+  WorkQueue(const WorkQueue&) = delete;
+  WorkQueue& operator=(const WorkQueue&) = delete;
+
+  // Threaded mode: items are handled in a thread of the queue from now on.
+  void startThread() {
+    std::lock_guard lock(mutex_);
+    if (!thread_.joinable() && !stopping_) thread_ = std::thread([this] { run(); });
+  }
+
+  void push(T item) {
+    {
+      std::lock_guard lock(mutex_);
+      items_.push_back(std::move(item));
+      while (options_.capacity > 0 && items_.size() > options_.capacity) items_.pop_front();
+      if (options_.on_push) options_.on_push();
+    }
+    changed_.notify_all();
+  }
+
+  // Sequential mode: handles every queued item now, in the caller's thread.
+  void processPending() {
+    while (auto item = take()) handler_(*item);
+  }
+
+  // Threaded mode: blocks until the queue is empty and no item is being handled.
+  void waitUntilIdle() {
+    std::unique_lock lock(mutex_);
+    changed_.wait(lock, [this] { return (items_.empty() && !busy_) || !thread_.joinable(); });
+  }
+
+  // Stops and joins the thread (idempotent); queued items are handled first.
+  void shutdown() {
+    {
+      std::lock_guard lock(mutex_);
+      stopping_ = true;
+    }
+    changed_.notify_all();
+    if (thread_.joinable()) thread_.join();
+  }
+
+  bool idle() const {
+    std::lock_guard lock(mutex_);
+    return items_.empty() && !busy_;
+  }
+
+  std::size_t size() const {
+    std::lock_guard lock(mutex_);
+    return items_.size();
+  }
+
+ private:
+  std::optional<T> take() {
+    std::lock_guard lock(mutex_);
+    if (items_.empty()) return std::nullopt;
+    return popFront();
+  }
+
+  T popFront() {
+    T item = std::move(items_.front());
+    items_.pop_front();
+    if (options_.on_take) options_.on_take();
+    return item;
+  }
+
+  void run() {
+    while (true) {
+      std::optional<T> item;
+      {
+        std::unique_lock lock(mutex_);
+        changed_.wait(lock, [this] { return stopping_ || !items_.empty(); });
+        if (items_.empty()) break;  // stopping, nothing left
+        item = popFront();
+        busy_ = true;
+      }
+      handler_(*item);
+      {
+        std::lock_guard lock(mutex_);
+        busy_ = false;
+      }
+      changed_.notify_all();
+    }
+    changed_.notify_all();
+  }
+
+  std::function<void(T&)> handler_;
+  Options options_;
+  mutable std::mutex mutex_;
+  std::condition_variable changed_;
+  std::deque<T> items_;
+  bool busy_ = false;
+  bool stopping_ = false;
+  std::thread thread_;
+};
+
+}  // namespace lumaslam::core
