@@ -26,7 +26,8 @@ test: build
 	@cd $(BUILD_DIR) && ctest --output-on-failure -j $(JOBS)
 
 # Sanitizer suites (not part of `make test`; each builds its own tree, much slower than
-# Release). SANITIZER_TESTS narrows them with a ctest -R regex, e.g. 'test_system|test_loop'.
+# Release). SANITIZER_TESTS narrows them to executables (a ctest -L label regex), e.g.
+# SANITIZER_TESTS='test_system|test_loop_closer'.
 # TSan runs OpenCV and TBB single-threaded (src/lumaslam/core/serial_libraries.h), so its
 # reports are races between our own threads; tests/*.supp list the third-party exceptions.
 SANITIZER_TESTS ?= .
@@ -37,7 +38,7 @@ test-tsan: deps
 	@cmake -S . -B build-tsan -DLUMASLAM_SANITIZE=thread $(SANITIZER_CMAKE) >/dev/null
 	@cmake --build build-tsan -j $(JOBS)
 	@cd build-tsan && TSAN_OPTIONS="suppressions=$(CURDIR)/tests/tsan.supp second_deadlock_stack=1" \
-		ctest --output-on-failure -j $(JOBS) --timeout 3000 -R '$(SANITIZER_TESTS)'
+		ctest --output-on-failure -j $(JOBS) -L '$(SANITIZER_TESTS)'
 
 test-asan: deps
 	@cmake -S . -B build-asan -DLUMASLAM_SANITIZE=address,undefined $(SANITIZER_CMAKE) >/dev/null
@@ -45,7 +46,7 @@ test-asan: deps
 	@cd build-asan && ASAN_OPTIONS=check_initialization_order=1 \
 		LSAN_OPTIONS="suppressions=$(CURDIR)/tests/lsan.supp" \
 		UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
-		ctest --output-on-failure -j $(JOBS) --timeout 3000 -R '$(SANITIZER_TESTS)'
+		ctest --output-on-failure -j $(JOBS) -L '$(SANITIZER_TESTS)'
 
 bench: build
 	$(BUILD_DIR)/lumaslam_bench --benchmark_min_time=0.2
