@@ -28,8 +28,9 @@ test: build
 # Sanitizer suites (not part of `make test`; each builds its own tree, much slower than
 # Release). SANITIZER_TESTS narrows them to executables (a ctest -L label regex), e.g.
 # SANITIZER_TESTS='test_system|test_loop_closer'.
-# TSan runs OpenCV and TBB single-threaded (src/lumaslam/core/serial_libraries.h), so its
-# reports are races between our own threads; tests/*.supp list the third-party exceptions.
+# TSan runs OpenCV, TBB (src/lumaslam/core/serial_libraries.h) and OpenMP (OMP_NUM_THREADS)
+# single-threaded, so its reports are races between our own threads; tests/*.supp list the
+# third-party exceptions.
 SANITIZER_TESTS ?= .
 SANITIZER_CMAKE = -DCMAKE_BUILD_TYPE=Release -DLUMASLAM_SHARED_DIR=$(SHARED) \
 	-DLUMASLAM_BUILD_BENCH=OFF -DCMAKE_OPTIMIZE_DEPENDENCIES=ON $(CMAKE_FLAGS)
@@ -37,7 +38,7 @@ SANITIZER_CMAKE = -DCMAKE_BUILD_TYPE=Release -DLUMASLAM_SHARED_DIR=$(SHARED) \
 test-tsan: deps
 	@cmake -S . -B build-tsan -DLUMASLAM_SANITIZE=thread $(SANITIZER_CMAKE) >/dev/null
 	@cmake --build build-tsan -j $(JOBS)
-	@cd build-tsan && TSAN_OPTIONS="suppressions=$(CURDIR)/tests/tsan.supp second_deadlock_stack=1" \
+	@cd build-tsan && OMP_NUM_THREADS=1 TSAN_OPTIONS="suppressions=$(CURDIR)/tests/tsan.supp second_deadlock_stack=1" \
 		ctest --output-on-failure -j $(JOBS) -L '$(SANITIZER_TESTS)'
 
 test-asan: deps
