@@ -28,7 +28,7 @@ test: build
 # Sanitizer suites (not part of `make test`; each builds its own tree, much slower than
 # Release). SANITIZER_TESTS narrows them to executables (a ctest -L label regex), e.g.
 # SANITIZER_TESTS='test_system|test_loop_closer'.
-# TSan runs OpenCV, TBB (src/lumaslam/core/serial_libraries.h) and OpenMP (OMP_NUM_THREADS)
+# TSan runs OpenCV, TBB (src/lumaslam/core/serial_libraries.h) and OpenMP (OMP_THREAD_LIMIT)
 # single-threaded, so its reports are races between our own threads; tests/*.supp list the
 # third-party exceptions.
 SANITIZER_TESTS ?= .
@@ -38,7 +38,7 @@ SANITIZER_CMAKE = -DCMAKE_BUILD_TYPE=Release -DLUMASLAM_SHARED_DIR=$(SHARED) \
 test-tsan: deps
 	@cmake -S . -B build-tsan -DLUMASLAM_SANITIZE=thread $(SANITIZER_CMAKE) >/dev/null
 	@cmake --build build-tsan -j $(JOBS)
-	@cd build-tsan && OMP_NUM_THREADS=1 TSAN_OPTIONS="suppressions=$(CURDIR)/tests/tsan.supp second_deadlock_stack=1" \
+	@cd build-tsan && OMP_NUM_THREADS=1 OMP_THREAD_LIMIT=1 TSAN_OPTIONS="suppressions=$(CURDIR)/tests/tsan.supp second_deadlock_stack=1" \
 		ctest --output-on-failure -j $(JOBS) -L '$(SANITIZER_TESTS)'
 
 test-asan: deps

@@ -5,8 +5,8 @@
 // object of this class lives, cv::parallel_for_ and tbb::parallel_for run inline on the
 // calling thread, so TSan sees only our own std::threads (tracking, local mapping, loop
 // closing, detection worker, std::async jobs). Release builds never create one.
-// OpenMP (Ceres' sparse solver, via SuiteSparse) is the third pool: libgomp reads
-// OMP_NUM_THREADS=1 when it loads, so the TSan tests set that variable (tests/CMakeLists.txt).
+// OpenMP (SuiteSparse CHOLMOD under Ceres) is the third pool: it is capped from outside with
+// OMP_THREAD_LIMIT=1, which the TSan tests set (tests/CMakeLists.txt, make test-tsan).
 #include <tbb/global_control.h>
 #include <opencv2/core/utility.hpp>
 
