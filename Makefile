@@ -6,7 +6,7 @@ JOBS ?= $(shell nproc)
 SHARED ?= $(abspath ../shared)
 CMAKE_FLAGS ?=
 
-.PHONY: all deps configure build demo test bench clean format
+.PHONY: all deps configure build demo test test-tsan test-asan bench clean format
 
 all: build
 
@@ -24,6 +24,30 @@ demo: build
 
 test: build
 	@cd $(BUILD_DIR) && ctest --output-on-failure -j $(JOBS)
+
+# Sanitizer suites (not part of `make test`; each builds its own tree, much slower than
+# Release). SANITIZER_TESTS narrows them to executables (a ctest -L label regex), e.g.
+# SANITIZER_TESTS='test_system|test_loop_closer'.
+# TSan runs OpenCV, TBB (src/lumaslam/core/serial_libraries.h) and OpenMP (OMP_THREAD_LIMIT)
+# single-threaded, so its reports are races between our own threads; tests/*.supp list the
+# third-party exceptions.
+SANITIZER_TESTS ?= .
+SANITIZER_CMAKE = -DCMAKE_BUILD_TYPE=Release -DLUMASLAM_SHARED_DIR=$(SHARED) \
+	-DLUMASLAM_BUILD_BENCH=OFF -DCMAKE_OPTIMIZE_DEPENDENCIES=ON $(CMAKE_FLAGS)
+
+test-tsan: deps
+	@cmake -S . -B build-tsan -DLUMASLAM_SANITIZE=thread $(SANITIZER_CMAKE) >/dev/null
+	@cmake --build build-tsan -j $(JOBS)
+	@cd build-tsan && OMP_NUM_THREADS=1 OMP_THREAD_LIMIT=1 TSAN_OPTIONS="suppressions=$(CURDIR)/tests/tsan.supp second_deadlock_stack=1" \
+		ctest --output-on-failure -j $(JOBS) -L '$(SANITIZER_TESTS)'
+
+test-asan: deps
+	@cmake -S . -B build-asan -DLUMASLAM_SANITIZE=address,undefined $(SANITIZER_CMAKE) >/dev/null
+	@cmake --build build-asan -j $(JOBS)
+	@cd build-asan && ASAN_OPTIONS=check_initialization_order=1 \
+		LSAN_OPTIONS="suppressions=$(CURDIR)/tests/lsan.supp" \
+		UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
+		ctest --output-on-failure -j $(JOBS) -L '$(SANITIZER_TESTS)'
 
 bench: build
 	$(BUILD_DIR)/lumaslam_bench --benchmark_min_time=0.2

@@ -8,6 +8,9 @@
 #include <spdlog/spdlog.h>
 
 #include "command_registry.h"
+#ifdef LUMASLAM_SERIAL_LIBRARIES
+#include "lumaslam/core/serial_libraries.h"
+#endif
 
 namespace lumaslam::cli {
 
@@ -23,12 +26,17 @@ bool registerCommand(std::string name, std::string description, Setup setup) {
   return true;
 }
 
-const std::vector<Command>& commands() { return registry(); }
+const std::vector<Command>& commands() {
+  return registry();
+}
 
 }  // namespace lumaslam::cli
 
 int main(int argc, char** argv) {
   using namespace lumaslam::cli;
+#ifdef LUMASLAM_SERIAL_LIBRARIES  // ThreadSanitizer builds: OpenCV and TBB run single-threaded
+  const lumaslam::core::SerialLibraries serial_libraries;
+#endif
   CLI::App app{"lumaslam: visual SLAM that keeps localizing in bad light and busy scenes"};
   app.require_subcommand(1);
   std::string log_level = "info";
