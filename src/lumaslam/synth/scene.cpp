@@ -39,36 +39,15 @@ cv::Size2f faceSize(const Eigen::Vector3f& size, int face) {
   }
 }
 
-float capsuleDistance2(float u, float v, float ax, float ay, float bx, float by) {
-  const float dx = bx - ax, dy = by - ay;
-  const float t = std::clamp(((u - ax) * dx + (v - ay) * dy) / (dx * dx + dy * dy), 0.0f, 1.0f);
-  const float ex = u - (ax + t * dx), ey = v - (ay + t * dy);
-  return ex * ex + ey * ey;
-}
-
 }  // namespace
 
 bool insideWalkerSilhouette(float u, float v, float height, float gait_phase) {
-  const float s = height / 1.75f;
-  u /= s;
-  v /= s;
-  if (v < 0.0f || v > 1.75f || std::abs(u) > 0.45f) return false;
-  if (u * u + (v - 1.63f) * (v - 1.63f) < 0.1f * 0.1f) return true;                   // head
-  if (capsuleDistance2(u, v, 0.0f, 1.44f, 0.0f, 1.54f) < 0.05f * 0.05f) return true;  // neck
-  if (capsuleDistance2(u, v, 0.0f, 1.05f, 0.0f, 1.3f) < 0.15f * 0.15f) return true;   // torso
-  const float swing = std::sin(gait_phase);
-  for (const float side : {1.0f, -1.0f}) {
-    if (capsuleDistance2(u, v, 0.0f, 0.95f, side * 0.3f * swing, 0.05f) < 0.075f * 0.075f)
-      return true;  // leg
-    if (capsuleDistance2(u, v, 0.0f, 1.38f, -side * 0.25f * swing, 0.84f) < 0.05f * 0.05f)
-      return true;  // arm, opposite to the leg
-  }
-  return false;
+  return WalkerFigure(height, gait_phase).covers(u, v);
 }
 
 bool Scene::walkerCovers(const WalkerInstance& w, float u, float v, WalkerTexel& texel) const {
   if (w.photo < 0) {
-    if (!insideWalkerSilhouette(u, v, w.height, w.gait_phase)) return false;
+    if (!w.figure.covers(u, v)) return false;
     texel = {u + w.width * 0.5f, w.height - v};
     return true;
   }
@@ -398,6 +377,7 @@ SceneSnapshot Scene::at(double t, const Eigen::Vector3d& viewer) const {
     w.gait_phase = 2.0f * static_cast<float>(CV_PI) *
                    (static_cast<float>(walker.path.speed * t) + walker.path.offset_m) /
                    kStrideLength;
+    if (walker.photo < 0) w.figure = WalkerFigure(w.height, w.gait_phase);
     w.texture = walker.texture;
     w.photo = walker.photo;
     w.object_id = next_id++;

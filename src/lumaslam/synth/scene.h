@@ -14,6 +14,7 @@
 
 #include "lumaslam/synth/person_image.h"
 #include "lumaslam/synth/texture.h"
+#include "lumaslam/synth/walker_figure.h"
 
 namespace lumaslam::synth {
 
@@ -36,6 +37,7 @@ struct WalkerInstance {
   int texture = 0;
   int photo = -1;  // Scene::photoAlpha index when textured from a person photo, else -1
   std::uint8_t object_id = 0;
+  WalkerFigure figure;  // the procedural silhouette at gait_phase (photo walkers: unused)
 };
 
 struct PointLight {
