@@ -123,6 +123,26 @@ void Scene::bakeLightmaps(BoxInstance& box, bool is_room) {
   }
 }
 
+Eigen::Vector2f Scene::walkerPosition(const Walker& walker, double t) const {
+  if (!walker.follow) return walker.path.at(t);
+  const ViewFollowing& f = *walker.follow;
+  const auto heading = [&](double time) {  // of the camera's optical axis, on the floor
+    const Eigen::Vector3d axis = options_.walkers_follow_view(std::max(time, 0.0)).linear().col(2);
+    return std::atan2(axis.y(), axis.x());
+  };
+  const float ts = static_cast<float>(t);
+  const double bearing =
+      heading(t - f.lag_s) + f.sway_rad * std::sin(f.sway_rate * ts + f.sway_phase);
+  const double distance =
+      f.distance_m + f.distance_swing_m * std::sin(f.distance_rate * ts + f.distance_phase);
+  const Eigen::Vector2d camera =
+      options_.walkers_follow_view(std::max(t, 0.0)).translation().head<2>();
+  const Eigen::Vector2f p =
+      (camera + distance * Eigen::Vector2d(std::cos(bearing), std::sin(bearing))).cast<float>();
+  const Eigen::Vector2f margin = Eigen::Vector2f::Constant(0.4f);
+  return p.cwiseMax(room_.lo.head<2>() + margin).cwiseMin(room_.hi.head<2>() - margin);
+}
+
 Eigen::Vector2f Scene::LinearPath::at(double t) const {
   const float length = (b - a).norm();
   if (length < 1e-3f) return a;
@@ -199,6 +219,22 @@ Scene Scene::build(const SceneOptions& options, std::uint64_t seed) {
     walker.path = crossingPath(
         1.3f + 0.6f * static_cast<float>(i % 3) + static_cast<float>(rng.uniform(0, 0.3)),
         static_cast<float>(rng.uniform(1.8, 2.6)), static_cast<float>(rng.uniform(0.9, 1.3)));
+    if (options.walkers_follow_view) {  // own stream: the furniture stays as without
+      Rng follow_rng(seed, 0xf0110 + static_cast<std::uint64_t>(i));
+      ViewFollowing follow;
+      follow.lag_s = static_cast<float>(follow_rng.uniform(0.25, 0.5));
+      follow.sway_rad = static_cast<float>(follow_rng.uniform(0.2, 0.35));
+      follow.sway_rate = static_cast<float>(follow_rng.uniform(0.4, 0.8));
+      // Walkers start on opposite sides of the view and sway out of step.
+      follow.sway_phase = static_cast<float>(CV_PI) * static_cast<float>(i) +
+                          static_cast<float>(follow_rng.uniform(-0.5, 0.5));
+      follow.distance_m =
+          1.6f + 0.5f * static_cast<float>(i % 3) + static_cast<float>(follow_rng.uniform(0, 0.3));
+      follow.distance_swing_m = static_cast<float>(follow_rng.uniform(0.2, 0.4));
+      follow.distance_rate = static_cast<float>(follow_rng.uniform(0.2, 0.5));
+      follow.distance_phase = static_cast<float>(follow_rng.uniform(0, 2.0 * CV_PI));
+      walker.follow = follow;
+    }
     walker.height = static_cast<float>(rng.uniform(1.6, 1.88));
     walker.width = 0.9f * walker.height / 1.75f;
     Rng texture_rng = rng.fork();  // drawn even for photo walkers: same scene either way
@@ -365,7 +401,7 @@ SceneSnapshot Scene::at(double t, const Eigen::Vector3d& viewer) const {
   snapshot.ambient = ambient_;
   std::uint8_t next_id = 1;
   for (const auto& walker : walkers_) {
-    const Eigen::Vector2f p = walker.path.at(t);
+    const Eigen::Vector2f p = walkerPosition(walker, t);
     WalkerInstance w;
     w.base = {p.x(), p.y(), 0.0f};
     Eigen::Vector3f to_viewer = viewer.cast<float>() - w.base;
