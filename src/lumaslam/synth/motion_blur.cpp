@@ -68,15 +68,8 @@ cv::Mat applyMotionBlur(const cv::Mat& radiance, const cv::Mat& depth, const Pin
             const float length = std::sqrt((bx - ax) * (bx - ax) + (by - ay) * (by - ay));
             int taps = static_cast<int>(length);  // ceil(length), without a libm call
             taps = std::clamp(taps + (static_cast<float>(taps) < length ? 1 : 0), 1, 32);
-            if (taps == 1) {  // under a pixel of blur: the image at the path's midpoint
-              const float mx = 0.5f * (ax + bx), my = 0.5f * (ay + by);
-              // Exposures centred on the frame's pose put the midpoint on the pixel itself (to
-              // second order); resampling there would only smooth.
-              if (std::abs(mx - static_cast<float>(x)) < 0.02f &&
-                  std::abs(my - static_cast<float>(y)) < 0.02f)
-                o[x] = radiance.at<cv::Vec3f>(y, x);
-              else
-                storeBgr(o[x], bilinear(source, mx, my));
+            if (taps == 1) {
+              storeBgr(o[x], bilinear(source, 0.5f * (ax + bx), 0.5f * (ay + by)));
               continue;
             }
             cv::v_float32x4 sum = cv::v_setzero_f32();
