@@ -70,6 +70,56 @@ std::vector<FrameExposure> planExposures(const LightingSchedule& schedule, const
   return plan;
 }
 
+namespace {
+
+struct ExposeParams {
+  const std::vector<std::uint8_t>* table;
+  float electrons_per_unit;
+  float mean_electrons_per_unit;  // per unit of the channel sum
+  float to_output;
+  float read2;
+  float noise;
+};
+
+// One row of exposeImage for C channels (C known at compile time: the channel loops unroll).
+template <int C>
+void exposeRow(const float* in, const float* field, std::uint8_t* o, int cols,
+               std::uint64_t row_key, const ExposeParams& p) {
+  const std::uint8_t* table = p.table->data();
+  constexpr float kMax = static_cast<float>(kLutSize - 1);
+  for (int x = 0; x < cols; ++x) {
+    const float local = field ? field[x] : 1.0f;
+    float e[C];
+    float sum = 0.0f;
+    for (int c = 0; c < C; ++c) {
+      const float value = std::max(0.0f, in[x * C + c] * local);
+      sum += value;
+      e[c] = value * p.electrons_per_unit;
+    }
+    if (p.noise > 0.0f) {
+      // One hash per pixel: 21 bits per channel, each the sum of a 10- and an 11-bit uniform
+      // (triangular, variance-normalised): close enough to Gaussian for sensor noise.
+      const std::uint64_t bits = mix64(row_key ^ static_cast<std::uint64_t>(x));
+      // Shot-noise scale from the pixel's mean signal: one square root per pixel.
+      const float sigma = p.noise * std::sqrt(sum * p.mean_electrons_per_unit + p.read2);
+      for (int c = 0; c < C; ++c) {
+        const std::uint64_t part = bits >> (21 * c);
+        const float triangular =
+            (static_cast<float>(part & 0x3ff) * (1.0f / 1024.0f) +
+             static_cast<float>((part >> 10) & 0x7ff) * (1.0f / 2048.0f) - 1.0f) *
+            2.449f;
+        e[c] += sigma * triangular;
+      }
+    }
+    for (int c = 0; c < C; ++c) {
+      const float v = std::min(std::max(e[c] * p.to_output, 0.0f), kMax);
+      o[x * C + c] = table[static_cast<int>(v + 0.5f)];
+    }
+  }
+}
+
+}  // namespace
+
 cv::Mat exposeImage(const cv::Mat& radiance, double signal, double gain, int dark_level,
                     const SensorModel& sensor, std::uint64_t noise_key,
                     const cv::Mat& light_field) {
@@ -77,44 +127,28 @@ cv::Mat exposeImage(const cv::Mat& radiance, double signal, double gain, int dar
   if (!light_field.empty() &&
       (light_field.size() != radiance.size() || light_field.type() != CV_32F))
     fail("exposeImage: light field must be CV_32F of the image size");
-  const auto& table = outputTable(dark_level);
   const int channels = radiance.channels();
+  if (channels != 1 && channels != 3)
+    fail("exposeImage: expected 1 or 3 channels, got {}", channels);
   cv::Mat out(radiance.size(), CV_MAKETYPE(CV_8U, channels));
-  const float electrons_per_unit = static_cast<float>(signal * sensor.full_well_e);
-  const float to_output = static_cast<float>(gain / sensor.full_well_e) * (kLutSize - 1);
-  const float read2 = static_cast<float>(sensor.read_noise_e * sensor.read_noise_e);
-  const float noise = static_cast<float>(sensor.noise_scale);
+  ExposeParams params;
+  params.table = &outputTable(dark_level);
+  params.electrons_per_unit = static_cast<float>(signal * sensor.full_well_e);
+  params.mean_electrons_per_unit = params.electrons_per_unit / static_cast<float>(channels);
+  params.to_output = static_cast<float>(gain / sensor.full_well_e) * (kLutSize - 1);
+  params.read2 = static_cast<float>(sensor.read_noise_e * sensor.read_noise_e);
+  params.noise = static_cast<float>(sensor.noise_scale);
   tbb::parallel_for(
       tbb::blocked_range<int>(0, radiance.rows, 16), [&](const tbb::blocked_range<int>& rows) {
         for (int y = rows.begin(); y < rows.end(); ++y) {
-          const float* in = radiance.ptr<float>(y);
           const float* field = light_field.empty() ? nullptr : light_field.ptr<float>(y);
-          std::uint8_t* o = out.ptr<std::uint8_t>(y);
           const std::uint64_t row_key = hashKey(noise_key, static_cast<std::uint64_t>(y));
-          for (int x = 0; x < radiance.cols; ++x) {
-            const float local = field ? field[x] : 1.0f;
-            // One hash per pixel: 21 bits per channel, each the sum of a 10- and an 11-bit uniform
-            // (triangular, variance-normalised): close enough to Gaussian for sensor noise.
-            const std::uint64_t bits = mix64(row_key ^ static_cast<std::uint64_t>(x));
-            // Shot-noise scale from the pixel's mean signal: one square root per pixel.
-            float mean_e = 0.0f;
-            for (int c = 0; c < channels; ++c)
-              mean_e += std::max(0.0f, in[x * channels + c] * local);
-            mean_e *= electrons_per_unit / static_cast<float>(channels);
-            const float sigma = noise * std::sqrt(mean_e + read2);
-            for (int c = 0; c < channels; ++c) {
-              const int i = x * channels + c;
-              const std::uint64_t part = bits >> (21 * c);
-              const float triangular =
-                  (static_cast<float>(part & 0x3ff) * (1.0f / 1024.0f) +
-                   static_cast<float>((part >> 10) & 0x7ff) * (1.0f / 2048.0f) - 1.0f) *
-                  2.449f;
-              float e = std::max(0.0f, in[i] * local) * electrons_per_unit;
-              if (noise > 0.0f) e += sigma * triangular;
-              const float v = std::clamp(e * to_output, 0.0f, static_cast<float>(kLutSize - 1));
-              o[i] = table[static_cast<size_t>(v + 0.5f)];
-            }
-          }
+          if (channels == 3)
+            exposeRow<3>(radiance.ptr<float>(y), field, out.ptr<std::uint8_t>(y), radiance.cols,
+                         row_key, params);
+          else
+            exposeRow<1>(radiance.ptr<float>(y), field, out.ptr<std::uint8_t>(y), radiance.cols,
+                         row_key, params);
         }
       });
   return out;

@@ -5,23 +5,37 @@
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <opencv2/core/hal/intrin.hpp>
 
 #include "lumaslam/core/error.h"
+#include "lumaslam/synth/spare_row.h"
 
 namespace lumaslam::synth {
 
 namespace {
 
-cv::Vec3f bilinear(const cv::Mat& img, float x, float y) {
+// Pixel (x, y) of a CV_32FC3 image as lanes 0-2 (lane 3 is the next pixel's first channel).
+inline cv::v_float32x4 pixel(const cv::Mat& img, int x, int y) {
+  return cv::v_load(img.ptr<float>(y) + 3 * x);
+}
+
+// `img` must have a spare row in memory after its last one (see withSpareRow).
+inline cv::v_float32x4 bilinear(const cv::Mat& img, float x, float y) {
   x = std::clamp(x, 0.0f, static_cast<float>(img.cols - 1));
   y = std::clamp(y, 0.0f, static_cast<float>(img.rows - 1));
   const int x0 = std::min(static_cast<int>(x), img.cols - 2),
             y0 = std::min(static_cast<int>(y), img.rows - 2);
-  const float fx = x - static_cast<float>(x0), fy = y - static_cast<float>(y0);
-  const auto* r0 = img.ptr<cv::Vec3f>(y0);
-  const auto* r1 = img.ptr<cv::Vec3f>(y0 + 1);
-  return (r0[x0] * (1 - fx) + r0[x0 + 1] * fx) * (1 - fy) +
-         (r1[x0] * (1 - fx) + r1[x0 + 1] * fx) * fy;
+  const cv::v_float32x4 fx = cv::v_setall_f32(x - static_cast<float>(x0));
+  const cv::v_float32x4 fy = cv::v_setall_f32(y - static_cast<float>(y0));
+  const cv::v_float32x4 one = cv::v_setall_f32(1.0f);
+  return (pixel(img, x0, y0) * (one - fx) + pixel(img, x0 + 1, y0) * fx) * (one - fy) +
+         (pixel(img, x0, y0 + 1) * (one - fx) + pixel(img, x0 + 1, y0 + 1) * fx) * fy;
+}
+
+inline void storeBgr(cv::Vec3f& out, const cv::v_float32x4& value) {
+  float lanes[4];
+  cv::v_store(lanes, value);
+  out = {lanes[0], lanes[1], lanes[2]};
 }
 
 }  // namespace
@@ -34,6 +48,7 @@ cv::Mat applyMotionBlur(const cv::Mat& radiance, const cv::Mat& depth, const Pin
   const Eigen::Isometry3f T_end_mid = (T_w_end.inverse() * T_w_mid).cast<float>();
   const float fx = static_cast<float>(cam.fx), fy = static_cast<float>(cam.fy);
   const float cx = static_cast<float>(cam.cx), cy = static_cast<float>(cam.cy);
+  const cv::Mat source = withSpareRow(radiance);  // 4-float loads of the last pixel stay inside
   cv::Mat out(radiance.size(), CV_32FC3);
   tbb::parallel_for(
       tbb::blocked_range<int>(0, radiance.rows, 8), [&](const tbb::blocked_range<int>& rows) {
@@ -51,17 +66,18 @@ cv::Mat applyMotionBlur(const cv::Mat& radiance, const cv::Mat& depth, const Pin
             const float ax = fx * a.x() / a.z() + cx, ay = fy * a.y() / a.z() + cy;
             const float bx = fx * b.x() / b.z() + cx, by = fy * b.y() / b.z() + cy;
             const float length = std::sqrt((bx - ax) * (bx - ax) + (by - ay) * (by - ay));
-            const int taps = std::clamp(static_cast<int>(std::ceil(length)), 1, 32);
+            int taps = static_cast<int>(length);  // ceil(length), without a libm call
+            taps = std::clamp(taps + (static_cast<float>(taps) < length ? 1 : 0), 1, 32);
             if (taps == 1) {
-              o[x] = bilinear(radiance, 0.5f * (ax + bx), 0.5f * (ay + by));
+              storeBgr(o[x], bilinear(source, 0.5f * (ax + bx), 0.5f * (ay + by)));
               continue;
             }
-            cv::Vec3f sum(0, 0, 0);
+            cv::v_float32x4 sum = cv::v_setzero_f32();
             for (int k = 0; k < taps; ++k) {
               const float s = (static_cast<float>(k) + 0.5f) / static_cast<float>(taps);
-              sum += bilinear(radiance, ax + s * (bx - ax), ay + s * (by - ay));
+              sum = sum + bilinear(source, ax + s * (bx - ax), ay + s * (by - ay));
             }
-            o[x] = sum * (1.0f / static_cast<float>(taps));
+            storeBgr(o[x], sum * cv::v_setall_f32(1.0f / static_cast<float>(taps)));
           }
         }
       });

@@ -53,9 +53,11 @@ std::vector<Preset> buildPresets() {
   p.walkers = 2;
   p.moving_boxes = 1;
   presets.push_back(p);
-  p = make("walking-rpy-rgbd", "RGB-D fast rotations, two people walking (TUM fr3 walking_rpy)",
+  p = make("walking-rpy-rgbd",
+           "RGB-D fast rotations, two people walking within the turning view (TUM fr3 walking_rpy)",
            Rgbd, Rpy, 300);
   p.walkers = 2;
+  p.walkers_follow_view = true;
   presets.push_back(p);
   p = make("walking-halfsphere-rgbd",
            "RGB-D half sphere, three people walking (TUM fr3 walking_halfsphere)", Rgbd, Halfsphere,

@@ -18,6 +18,9 @@ struct Preset {
   int frames = 300;
   double motion_speed = 1.0;  // >1 plays the trajectory faster
   int walkers = 0;
+  // Walkers stay in the camera's (rotating) view instead of crossing a fixed spot: see
+  // SceneOptions::walkers_follow_view.
+  bool walkers_follow_view = false;
   int moving_boxes = 0;
   bool spotlight = false;
   LightingSchedule lighting;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <tuple>
 #include <vector>
 
 #include <tbb/blocked_range.h>
@@ -13,27 +14,54 @@ namespace lumaslam::synth {
 namespace {
 
 struct ScreenRect {
-  int x0 = 0, x1 = -1, y0 = 0, y1 = -1;  // inclusive
+  int x0 = 0, x1 = -1, y0 = 0, y1 = -1;  // inclusive; empty when x1 < x0
+  float near_z = 0.0f;                   // smallest camera z of the object's visible part
+  bool empty() const { return x1 < x0 || y1 < y0; }
 };
 
-// Image rectangle covered by a set of world points; the whole image if one is behind the camera.
+// Rays are cast from the camera centre, so hits closer than this are never needed.
+constexpr float kNearZ = 1e-3f;
+
+// Image rectangle covered by the convex hull of `points` (box corners or billboard corners in
+// the order of corners() below), clipped to the part in front of the camera (z >= kNearZ): an
+// object behind the camera gets an empty rectangle.
 template <typename Points>
 ScreenRect projectBounds(const Points& points, const Eigen::Matrix3f& R_c_w,
                          const Eigen::Vector3f& t_c_w, const PinholeCamera& cam) {
+  constexpr int n = static_cast<int>(std::tuple_size_v<Points>);
+  std::array<Eigen::Vector3f, n> pc;
+  for (int i = 0; i < n; ++i)
+    pc[static_cast<size_t>(i)] = R_c_w * points[static_cast<size_t>(i)] + t_c_w;
   float xmin = std::numeric_limits<float>::max(), xmax = -xmin, ymin = xmin, ymax = -xmin;
-  for (const Eigen::Vector3f& p : points) {
-    const Eigen::Vector3f pc = R_c_w * p + t_c_w;
-    if (pc.z() < 0.05f) return {0, cam.width - 1, 0, cam.height - 1};
-    const float u = static_cast<float>(cam.fx) * pc.x() / pc.z() + static_cast<float>(cam.cx);
-    const float v = static_cast<float>(cam.fy) * pc.y() / pc.z() + static_cast<float>(cam.cy);
+  float near_z = xmin;
+  const auto add = [&](const Eigen::Vector3f& p) {
+    const float u = static_cast<float>(cam.fx) * p.x() / p.z() + static_cast<float>(cam.cx);
+    const float v = static_cast<float>(cam.fy) * p.y() / p.z() + static_cast<float>(cam.cy);
     xmin = std::min(xmin, u), xmax = std::max(xmax, u), ymin = std::min(ymin, v),
-    ymax = std::max(ymax, v);
+    ymax = std::max(ymax, v), near_z = std::min(near_z, p.z());
+  };
+  // Points of the hull in front of the near plane: the corners there, and where the edges
+  // (all pairs: a superset of the real edges, still inside the hull) cross the plane.
+  for (int i = 0; i < n; ++i) {
+    const Eigen::Vector3f& a = pc[static_cast<size_t>(i)];
+    if (a.z() >= kNearZ) add(a);
+    for (int j = i + 1; j < n; ++j) {
+      const Eigen::Vector3f& b = pc[static_cast<size_t>(j)];
+      if ((a.z() < kNearZ) != (b.z() < kNearZ))
+        add(a + (b - a) * ((kNearZ - a.z()) / (b.z() - a.z())));
+    }
   }
   ScreenRect r;
-  r.x0 = std::max(0, static_cast<int>(std::floor(xmin)) - 1);
-  r.x1 = std::min(cam.width - 1, static_cast<int>(std::ceil(xmax)) + 1);
-  r.y0 = std::max(0, static_cast<int>(std::floor(ymin)) - 1);
-  r.y1 = std::min(cam.height - 1, static_cast<int>(std::ceil(ymax)) + 1);
+  if (near_z == std::numeric_limits<float>::max()) return r;  // wholly behind the camera
+  // Clamp in float first: points just in front of the near plane project far outside.
+  const auto clampTo = [](float value, int hi) {
+    return static_cast<int>(std::clamp(value, -2.0f, static_cast<float>(hi) + 2.0f));
+  };
+  r.x0 = std::max(0, clampTo(std::floor(xmin), cam.width) - 1);
+  r.x1 = std::min(cam.width - 1, clampTo(std::ceil(xmax), cam.width) + 1);
+  r.y0 = std::max(0, clampTo(std::floor(ymin), cam.height) - 1);
+  r.y1 = std::min(cam.height - 1, clampTo(std::ceil(ymax), cam.height) + 1);
+  r.near_z = near_z;
   return r;
 }
 
@@ -103,6 +131,14 @@ RenderedView renderView(const Scene& scene, const SceneSnapshot& snapshot, const
   std::vector<ScreenRect> box_rects;
   for (const auto& box : snapshot.boxes)
     box_rects.push_back(projectBounds(corners(box), R_c_w, t_c_w, cam));
+  // Visible boxes nearest first, so a pixel stops testing once the boxes left start behind
+  // its hit (equal distances keep scene order: the same image whatever the sort does).
+  std::vector<int> box_order;
+  for (int i = 0; i < static_cast<int>(box_rects.size()); ++i)
+    if (!box_rects[static_cast<size_t>(i)].empty()) box_order.push_back(i);
+  std::stable_sort(box_order.begin(), box_order.end(), [&](int a, int b) {
+    return box_rects[static_cast<size_t>(a)].near_z < box_rects[static_cast<size_t>(b)].near_z;
+  });
   std::vector<ScreenRect> walker_rects;
   for (const auto& w : snapshot.walkers)
     walker_rects.push_back(projectBounds(corners(w), R_c_w, t_c_w, cam));
@@ -119,7 +155,7 @@ RenderedView renderView(const Scene& scene, const SceneSnapshot& snapshot, const
         for (int y = rows.begin(); y < rows.end(); ++y) {
           for (auto& block : boxes_in_block) block.clear();
           walkers_in_row.clear();
-          for (int i = 0; i < static_cast<int>(box_rects.size()); ++i) {
+          for (const int i : box_order) {
             const ScreenRect& r = box_rects[static_cast<size_t>(i)];
             if (y < r.y0 || y > r.y1) continue;
             for (int b = r.x0 / kBlock; b <= r.x1 / kBlock; ++b)
@@ -150,6 +186,7 @@ RenderedView renderView(const Scene& scene, const SceneSnapshot& snapshot, const
             }
             for (const int i : boxes_in_block[static_cast<size_t>(x / kBlock)]) {
               const ScreenRect& r = box_rects[static_cast<size_t>(i)];
+              if (r.near_z >= hit.t) break;  // this and every later box lie behind the hit
               if (x < r.x0 || x > r.x1) continue;
               const BoxInstance& box = snapshot.boxes[static_cast<size_t>(i)];
               float t_near = 0.0f, t_far = hit.t;

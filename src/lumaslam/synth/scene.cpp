@@ -39,36 +39,15 @@ cv::Size2f faceSize(const Eigen::Vector3f& size, int face) {
   }
 }
 
-float capsuleDistance2(float u, float v, float ax, float ay, float bx, float by) {
-  const float dx = bx - ax, dy = by - ay;
-  const float t = std::clamp(((u - ax) * dx + (v - ay) * dy) / (dx * dx + dy * dy), 0.0f, 1.0f);
-  const float ex = u - (ax + t * dx), ey = v - (ay + t * dy);
-  return ex * ex + ey * ey;
-}
-
 }  // namespace
 
 bool insideWalkerSilhouette(float u, float v, float height, float gait_phase) {
-  const float s = height / 1.75f;
-  u /= s;
-  v /= s;
-  if (v < 0.0f || v > 1.75f || std::abs(u) > 0.45f) return false;
-  if (u * u + (v - 1.63f) * (v - 1.63f) < 0.1f * 0.1f) return true;                   // head
-  if (capsuleDistance2(u, v, 0.0f, 1.44f, 0.0f, 1.54f) < 0.05f * 0.05f) return true;  // neck
-  if (capsuleDistance2(u, v, 0.0f, 1.05f, 0.0f, 1.3f) < 0.15f * 0.15f) return true;   // torso
-  const float swing = std::sin(gait_phase);
-  for (const float side : {1.0f, -1.0f}) {
-    if (capsuleDistance2(u, v, 0.0f, 0.95f, side * 0.3f * swing, 0.05f) < 0.075f * 0.075f)
-      return true;  // leg
-    if (capsuleDistance2(u, v, 0.0f, 1.38f, -side * 0.25f * swing, 0.84f) < 0.05f * 0.05f)
-      return true;  // arm, opposite to the leg
-  }
-  return false;
+  return WalkerFigure(height, gait_phase).covers(u, v);
 }
 
 bool Scene::walkerCovers(const WalkerInstance& w, float u, float v, WalkerTexel& texel) const {
   if (w.photo < 0) {
-    if (!insideWalkerSilhouette(u, v, w.height, w.gait_phase)) return false;
+    if (!w.figure.covers(u, v)) return false;
     texel = {u + w.width * 0.5f, w.height - v};
     return true;
   }
@@ -142,6 +121,26 @@ void Scene::bakeLightmaps(BoxInstance& box, bool is_room) {
     lightmaps_.push_back(map);
     box.lightmaps[static_cast<size_t>(face)] = static_cast<int>(lightmaps_.size()) - 1;
   }
+}
+
+Eigen::Vector2f Scene::walkerPosition(const Walker& walker, double t) const {
+  if (!walker.follow) return walker.path.at(t);
+  const ViewFollowing& f = *walker.follow;
+  const auto heading = [&](double time) {  // of the camera's optical axis, on the floor
+    const Eigen::Vector3d axis = options_.walkers_follow_view(std::max(time, 0.0)).linear().col(2);
+    return std::atan2(axis.y(), axis.x());
+  };
+  const float ts = static_cast<float>(t);
+  const double bearing =
+      heading(t - f.lag_s) + f.sway_rad * std::sin(f.sway_rate * ts + f.sway_phase);
+  const double distance =
+      f.distance_m + f.distance_swing_m * std::sin(f.distance_rate * ts + f.distance_phase);
+  const Eigen::Vector2d camera =
+      options_.walkers_follow_view(std::max(t, 0.0)).translation().head<2>();
+  const Eigen::Vector2f p =
+      (camera + distance * Eigen::Vector2d(std::cos(bearing), std::sin(bearing))).cast<float>();
+  const Eigen::Vector2f margin = Eigen::Vector2f::Constant(0.4f);
+  return p.cwiseMax(room_.lo.head<2>() + margin).cwiseMin(room_.hi.head<2>() - margin);
 }
 
 Eigen::Vector2f Scene::LinearPath::at(double t) const {
@@ -220,6 +219,22 @@ Scene Scene::build(const SceneOptions& options, std::uint64_t seed) {
     walker.path = crossingPath(
         1.3f + 0.6f * static_cast<float>(i % 3) + static_cast<float>(rng.uniform(0, 0.3)),
         static_cast<float>(rng.uniform(1.8, 2.6)), static_cast<float>(rng.uniform(0.9, 1.3)));
+    if (options.walkers_follow_view) {  // own stream: the furniture stays as without
+      Rng follow_rng(seed, 0xf0110 + static_cast<std::uint64_t>(i));
+      ViewFollowing follow;
+      follow.lag_s = static_cast<float>(follow_rng.uniform(0.25, 0.5));
+      follow.sway_rad = static_cast<float>(follow_rng.uniform(0.2, 0.35));
+      follow.sway_rate = static_cast<float>(follow_rng.uniform(0.4, 0.8));
+      // Walkers start on opposite sides of the view and sway out of step.
+      follow.sway_phase = static_cast<float>(CV_PI) * static_cast<float>(i) +
+                          static_cast<float>(follow_rng.uniform(-0.5, 0.5));
+      follow.distance_m =
+          1.6f + 0.5f * static_cast<float>(i % 3) + static_cast<float>(follow_rng.uniform(0, 0.3));
+      follow.distance_swing_m = static_cast<float>(follow_rng.uniform(0.2, 0.4));
+      follow.distance_rate = static_cast<float>(follow_rng.uniform(0.2, 0.5));
+      follow.distance_phase = static_cast<float>(follow_rng.uniform(0, 2.0 * CV_PI));
+      walker.follow = follow;
+    }
     walker.height = static_cast<float>(rng.uniform(1.6, 1.88));
     walker.width = 0.9f * walker.height / 1.75f;
     Rng texture_rng = rng.fork();  // drawn even for photo walkers: same scene either way
@@ -386,7 +401,7 @@ SceneSnapshot Scene::at(double t, const Eigen::Vector3d& viewer) const {
   snapshot.ambient = ambient_;
   std::uint8_t next_id = 1;
   for (const auto& walker : walkers_) {
-    const Eigen::Vector2f p = walker.path.at(t);
+    const Eigen::Vector2f p = walkerPosition(walker, t);
     WalkerInstance w;
     w.base = {p.x(), p.y(), 0.0f};
     Eigen::Vector3f to_viewer = viewer.cast<float>() - w.base;
@@ -398,6 +413,7 @@ SceneSnapshot Scene::at(double t, const Eigen::Vector3d& viewer) const {
     w.gait_phase = 2.0f * static_cast<float>(CV_PI) *
                    (static_cast<float>(walker.path.speed * t) + walker.path.offset_m) /
                    kStrideLength;
+    if (walker.photo < 0) w.figure = WalkerFigure(w.height, w.gait_phase);
     w.texture = walker.texture;
     w.photo = walker.photo;
     w.object_id = next_id++;

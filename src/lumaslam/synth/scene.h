@@ -5,15 +5,18 @@
 // z up, metres. `at(t)` gives the geometry at time t for the renderer.
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <opencv2/core.hpp>
 
 #include "lumaslam/synth/person_image.h"
 #include "lumaslam/synth/texture.h"
+#include "lumaslam/synth/walker_figure.h"
 
 namespace lumaslam::synth {
 
@@ -36,6 +39,7 @@ struct WalkerInstance {
   int texture = 0;
   int photo = -1;  // Scene::photoAlpha index when textured from a person photo, else -1
   std::uint8_t object_id = 0;
+  WalkerFigure figure;  // the procedural silhouette at gait_phase (photo walkers: unused)
 };
 
 struct PointLight {
@@ -71,6 +75,12 @@ struct SceneOptions {
   // Where the camera mostly is and looks (horizontal); walkers cross this view.
   Eigen::Vector3d view_origin{0.0, -0.9, 1.3};
   Eigen::Vector3d view_direction{0.0, 1.0, 0.0};
+  // When set, walkers do not cross the fixed view but walk within the field of view of this
+  // camera pose over time (seconds from the start): each keeps to a bearing that trails the
+  // camera's heading by a fraction of a second and sways +-15-20 deg about it, at 1.4-2.6 m,
+  // so they stay in a fast-rotating view and cover up to ~40% of it (like TUM fr3 walking_rpy,
+  // where people move in front of the camera for most of the sequence).
+  std::function<Eigen::Isometry3d(double)> walkers_follow_view;
 };
 
 // Lambertian light at p (normal n) from ambient + point lights, and from a spotlight.
@@ -120,8 +130,14 @@ class Scene {
     float offset_m = 0.0f;
     Eigen::Vector2f at(double t) const;
   };
+  struct ViewFollowing {  // see SceneOptions::walkers_follow_view
+    float lag_s = 0.3f;
+    float sway_rad = 0.3f, sway_rate = 0.5f, sway_phase = 0.0f;
+    float distance_m = 2.0f, distance_swing_m = 0.3f, distance_rate = 0.3f, distance_phase = 0.0f;
+  };
   struct Walker {
     LinearPath path;
+    std::optional<ViewFollowing> follow;
     float height = 1.75f;
     float width = 0.7f;
     int texture = 0;
@@ -134,6 +150,7 @@ class Scene {
   };
 
   int addTexture(const cv::Mat& image, float texel_size_m);
+  Eigen::Vector2f walkerPosition(const Walker& walker, double t) const;
   void bakeLightmaps(BoxInstance& box, bool is_room);
 
   std::vector<MipTexture> textures_;

@@ -25,6 +25,8 @@ Scene buildScene(const Preset& preset, const SynthOptions& options,
   scene_options.spotlight = preset.spotlight;
   scene_options.view_origin = trajectory.viewOrigin();
   scene_options.view_direction = trajectory.viewDirection();
+  if (preset.walkers_follow_view)
+    scene_options.walkers_follow_view = [trajectory](double t) { return trajectory.pose(t); };
   for (const auto& path : options.texture_images) {
     cv::Mat image = cv::imread(path.string(), cv::IMREAD_COLOR);
     if (image.empty())

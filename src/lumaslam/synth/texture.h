@@ -25,8 +25,6 @@ class MipTexture {
   cv::Vec3f sample(float u_m, float v_m, float footprint_m) const;
 
  private:
-  cv::Vec3f bilinear(int level, float x, float y) const;
-
   std::vector<cv::Mat> levels_;
   float texel_size_;
   float inv_texel_size_;
