@@ -158,21 +158,29 @@ int gradientRowSimd(const uchar* up, const uchar* row, const uchar* down, int co
   return x;
 }
 
-}  // namespace
-
-double gradientMagnitudeStd(const cv::Mat& gray) {
-  CV_Assert(gray.type() == CV_8UC1 && !gray.empty());
-  MagnitudeSums sums;
+// Sums a 3x3 filter's response over every pixel (BORDER_REFLECT_101): border columns with
+// `at`, the interior of each row with `row_simd`.
+template <typename Sums, typename At, typename RowSimd>
+Sums sumOverRows(const cv::Mat& gray, At at, RowSimd row_simd) {
+  Sums sums;
   for (int y = 0; y < gray.rows; ++y) {
     const uchar* up = gray.ptr<uchar>(reflect101(y - 1, gray.rows));
     const uchar* row = gray.ptr<uchar>(y);
     const uchar* down = gray.ptr<uchar>(reflect101(y + 1, gray.rows));
-    sums.add(gradientAt(up, row, down, 0, gray.cols));
+    sums.add(at(up, row, down, 0, gray.cols));
     if (gray.cols > 1) {
-      gradientRowSimd(up, row, down, gray.cols, sums);
-      sums.add(gradientAt(up, row, down, gray.cols - 1, gray.cols));
+      row_simd(up, row, down, gray.cols, sums);
+      sums.add(at(up, row, down, gray.cols - 1, gray.cols));
     }
   }
+  return sums;
+}
+
+}  // namespace
+
+double gradientMagnitudeStd(const cv::Mat& gray) {
+  CV_Assert(gray.type() == CV_8UC1 && !gray.empty());
+  const auto sums = sumOverRows<MagnitudeSums>(gray, gradientAt, gradientRowSimd);
   const double n = static_cast<double>(gray.total());
   const double mean = sums.sum / n;
   return std::sqrt(std::max(sums.squares / n - mean * mean, 0.0));
@@ -180,17 +188,7 @@ double gradientMagnitudeStd(const cv::Mat& gray) {
 
 double laplacianVariance(const cv::Mat& gray) {
   CV_Assert(gray.type() == CV_8UC1 && !gray.empty());
-  LaplacianSums sums;
-  for (int y = 0; y < gray.rows; ++y) {
-    const uchar* up = gray.ptr<uchar>(reflect101(y - 1, gray.rows));
-    const uchar* row = gray.ptr<uchar>(y);
-    const uchar* down = gray.ptr<uchar>(reflect101(y + 1, gray.rows));
-    sums.add(laplacianAt(up, row, down, 0, gray.cols));
-    if (gray.cols > 1) {
-      laplacianRowSimd(up, row, down, gray.cols, sums);
-      sums.add(laplacianAt(up, row, down, gray.cols - 1, gray.cols));
-    }
-  }
+  const auto sums = sumOverRows<LaplacianSums>(gray, laplacianAt, laplacianRowSimd);
   const double n = static_cast<double>(gray.total());
   const double mean = static_cast<double>(sums.sum) / n;
   return std::max(static_cast<double>(sums.squares) / n - mean * mean, 0.0);
