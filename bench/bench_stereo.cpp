@@ -54,16 +54,7 @@ const RectifiedPair& eurocPair() {
 }
 
 track::FrameCamera frameCameraOf(const camera::StereoRectifier& rectifier) {
-  const auto& k = rectifier.rectifiedCamera();
-  track::FrameCamera camera;
-  camera.fx = k.fx();
-  camera.fy = k.fy();
-  camera.cx = k.cx();
-  camera.cy = k.cy();
-  camera.size = cv::Size(k.size().width, k.size().height);
-  camera.bf = rectifier.bf();
-  camera.close_depth = 35.0 * rectifier.baseline();
-  return camera;
+  return {rectifier.rectifiedCamera(), rectifier.bf(), 35.0 * rectifier.baseline()};
 }
 
 // Argument: enhancement preset applied to both images first (each with its own Enhancer, as

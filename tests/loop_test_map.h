@@ -16,15 +16,10 @@
 namespace lumaslam::test {
 
 inline track::FrameCamera rgbdCameraOf(const synth::Rig& rig) {
-  track::FrameCamera camera;
-  camera.fx = rig.camera.fx;
-  camera.fy = rig.camera.fy;
-  camera.cx = rig.camera.cx;
-  camera.cy = rig.camera.cy;
-  camera.size = {rig.camera.width, rig.camera.height};
-  camera.bf = 0.08 * rig.camera.fx;  // TUM's virtual 8 cm baseline
-  camera.close_depth = 40 * 0.08;
-  return camera;
+  const auto& k = rig.camera;
+  return {camera::PinholeCamera(k.fx, k.fy, k.cx, k.cy, {k.width, k.height}),
+          0.08 * k.fx,  // TUM's virtual 8 cm baseline
+          40 * 0.08};
 }
 
 inline track::Frame buildRgbdFrame(const track::FrameBuilder& builder,

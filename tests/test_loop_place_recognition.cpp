@@ -21,9 +21,9 @@ std::shared_ptr<map::KeyFrame> keyFrameOf(map::Map& map, const cv::Mat& descript
   auto features = std::make_shared<map::FeatureSet>();
   features->descriptors = descriptors;
   features->keypoints.resize(static_cast<std::size_t>(descriptors.rows));
-  return std::make_shared<map::KeyFrame>(map.nextKeyFrameId(), 0, 0.0, SE3::Identity(),
-                                         std::move(features), std::make_shared<map::ScalePyramid>(),
-                                         map::PinholeIntrinsics{});
+  return std::make_shared<map::KeyFrame>(
+      map.nextKeyFrameId(), 0, 0.0, SE3::Identity(), std::move(features),
+      std::make_shared<feature::ScaleLevels>(8, 1.2F), CameraIntrinsics{});
 }
 
 TEST(LoopPlaceRecognition, FollowsTheMapsKeyFrames) {

@@ -32,7 +32,7 @@ struct LapMap {
 
   loop::RelocalizationFrame relocalizationFrame(const track::Frame& frame) const {
     return {frame.features.get(), builder.camera().intrinsics(), builder.pyramid().get(),
-            builder.camera().undistortedBounds()};
+            builder.camera().pinhole.undistortedBounds()};
   }
 
   LapMap() {
@@ -108,7 +108,7 @@ TEST(LoopRelocalizer, FailsCleanlyInAnotherRoomOrInTheDark) {
   EXPECT_FALSE(result.success) << result.inliers << " inliers";
   EXPECT_EQ(result.points.size(), elsewhere.size());
 
-  const cv::Mat black(lap.builder.camera().size, CV_8UC1, cv::Scalar(0));
+  const cv::Mat black(lap.builder.camera().size(), CV_8UC1, cv::Scalar(0));
   const track::Frame dark = lap.builder.build(0, 0.0, black, cv::Mat());
   EXPECT_FALSE(relocalizer.relocalize(lap.relocalizationFrame(dark)).success);
 

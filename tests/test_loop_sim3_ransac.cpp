@@ -11,7 +11,7 @@ namespace {
 
 using namespace lumaslam;
 
-const optimize::CameraIntrinsics kCamera{450.0, 450.0, 320.0, 240.0, 0.0};
+const CameraIntrinsics kCamera{450.0, 450.0, 320.0, 240.0, 0.0};
 
 struct Scene {
   optimize::Sim3 S_12;

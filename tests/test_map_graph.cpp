@@ -18,7 +18,7 @@ struct LineScene {
   std::vector<std::shared_ptr<lm::MapPoint>> points;
 
   LineScene(int keyframe_count, int point_count, double reach, bool stereo = false) {
-    auto pyramid = std::make_shared<const lm::ScalePyramid>(lm::ScalePyramid::make(8, 1.2));
+    auto pyramid = std::make_shared<const lumaslam::feature::ScaleLevels>(8, 1.2F);
     std::mt19937 rng(7);
     std::vector<std::vector<int>> seen_by(keyframe_count);
     for (int k = 0; k < keyframe_count; ++k) {
@@ -45,7 +45,7 @@ struct LineScene {
       T_w_c.translation() = Eigen::Vector3d(0.5 * k, 0, 0);
       auto kf = std::make_shared<lm::KeyFrame>(map.nextKeyFrameId(), static_cast<std::size_t>(k),
                                                0.1 * k, T_w_c.inverse(), features, pyramid,
-                                               lm::PinholeIntrinsics{500, 500, 320, 240, 0});
+                                               CameraIntrinsics{500, 500, 320, 240, 0});
       map.addKeyFrame(kf);
       for (std::size_t i = 0; i < seen_by[k].size(); ++i) {
         const int j = seen_by[k][i];
@@ -177,9 +177,9 @@ TEST(MapPoint, NormalDistanceRangeAndScalePrediction) {
           ->features()
           .keypoints[static_cast<std::size_t>(point->featureIndexIn(scene.keyframes[0]->id()))]
           .octave;
-  const double max_distance = distance * pyramid.scale[static_cast<std::size_t>(octave)];
+  const double max_distance = distance * pyramid.scale(octave);
   EXPECT_NEAR(point->maxDistance(), 1.2 * max_distance, 1e-9);
-  EXPECT_NEAR(point->minDistance(), 0.8 * max_distance / pyramid.scale.back(), 1e-9);
+  EXPECT_NEAR(point->minDistance(), 0.8 * max_distance / pyramid.scale(pyramid.count() - 1), 1e-9);
   EXPECT_EQ(point->predictScale(max_distance, pyramid), 0);
   EXPECT_EQ(point->predictScale(1.01 * max_distance / (1.2 * 1.2), pyramid), 2);
   EXPECT_EQ(point->predictScale(max_distance / 100.0, pyramid), 7);

@@ -109,8 +109,8 @@ TEST(SystemStereo, RealEurocAtRestTracksEveryFrameWithoutDrift) {
   options.sequential = true;
   System system(settings, options);
   // Tracking runs in the rectified camera: no distortion, bf from the rectified baseline.
-  EXPECT_FALSE(system.frameCamera().hasDistortion());
-  EXPECT_NEAR(system.frameCamera().bf / system.frameCamera().fx, 0.110, 0.002);
+  EXPECT_FALSE(system.frameCamera().pinhole.hasDistortion());
+  EXPECT_NEAR(system.frameCamera().bf / system.frameCamera().pinhole.fx(), 0.110, 0.002);
 
   auto reader = io::openDataset("euroc:" + root.string());
   std::size_t frames = 0;

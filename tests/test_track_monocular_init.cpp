@@ -19,15 +19,15 @@ struct Rendered {
   SE3 T_w_c;
 };
 
+camera::PinholeCamera monocularCameraOf(const synth::PinholeCamera& k) {
+  return {k.fx, k.fy, k.cx, k.cy, {k.width, k.height}};
+}
+
 class MonocularInit : public ::testing::Test {
  protected:
-  MonocularInit() : sequence_(synth::findPreset("xyz-rgbd"), 40, 1) {
-    const auto& camera = sequence_.rig().camera;
-    camera_.fx = camera.fx;
-    camera_.fy = camera.fy;
-    camera_.cx = camera.cx;
-    camera_.cy = camera.cy;
-    camera_.size = cv::Size(camera.width, camera.height);
+  MonocularInit()
+      : sequence_(synth::findPreset("xyz-rgbd"), 40, 1),
+        camera_{monocularCameraOf(sequence_.rig().camera)} {
     feature::OrbSettings orb;
     orb.nFeatures = 1000;
     builder_ = std::make_unique<track::FrameBuilder>(camera_, orb);
@@ -86,7 +86,7 @@ TEST_F(MonocularInit, RecoversTheRelativePoseBetweenRenderedFrames) {
 
 TEST_F(MonocularInit, AFrameWithoutFeaturesNeverBecomesTheReference) {
   track::MonocularInitializer initializer(camera_);
-  const cv::Mat black(camera_.size, CV_8UC1, cv::Scalar(0));
+  const cv::Mat black(camera_.size(), CV_8UC1, cv::Scalar(0));
   const auto empty = builder_->build(0, 0.0, black, cv::Mat());
   EXPECT_FALSE(initializer.tryInitialize(empty));
   EXPECT_FALSE(initializer.hasReference());

@@ -14,12 +14,12 @@ loop::RelocalizerParams relocalizerParams() {
 BowRelocalizer::BowRelocalizer(std::shared_ptr<const loop::PlaceRecognition> places,
                                std::shared_ptr<const map::Map> map,
                                const track::FrameCamera& camera,
-                               std::shared_ptr<const map::ScalePyramid> pyramid)
+                               std::shared_ptr<const feature::ScaleLevels> pyramid)
     : places_(std::move(places)),
       map_(std::move(map)),
       pyramid_(std::move(pyramid)),
       intrinsics_(camera.intrinsics()),
-      bounds_(camera.undistortedBounds()),
+      bounds_(camera.pinhole.undistortedBounds()),
       relocalizer_(places_->vocabulary(), places_->database(), *map_, relocalizerParams()) {}
 
 std::optional<track::Relocalization> BowRelocalizer::relocalize(const track::Frame& frame) const {

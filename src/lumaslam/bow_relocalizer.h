@@ -15,15 +15,15 @@ class BowRelocalizer : public track::FrameRelocalizer {
  public:
   BowRelocalizer(std::shared_ptr<const loop::PlaceRecognition> places,
                  std::shared_ptr<const map::Map> map, const track::FrameCamera& camera,
-                 std::shared_ptr<const map::ScalePyramid> pyramid);
+                 std::shared_ptr<const feature::ScaleLevels> pyramid);
 
   std::optional<track::Relocalization> relocalize(const track::Frame& frame) const override;
 
  private:
   std::shared_ptr<const loop::PlaceRecognition> places_;
   std::shared_ptr<const map::Map> map_;
-  std::shared_ptr<const map::ScalePyramid> pyramid_;
-  map::PinholeIntrinsics intrinsics_;
+  std::shared_ptr<const feature::ScaleLevels> pyramid_;
+  CameraIntrinsics intrinsics_;
   cv::Rect2f bounds_;
   loop::Relocalizer relocalizer_;
 };

@@ -32,27 +32,12 @@ double msSince(Clock::time_point start) {
 
 track::FrameCamera frameCameraFrom(const io::Settings& settings,
                                    const camera::StereoRectifier* rectifier) {
-  const auto camera = settings.camera.atWorkingSize();
-  track::FrameCamera result;
-  result.fx = camera.fx;
-  result.fy = camera.fy;
-  result.cx = camera.cx;
-  result.cy = camera.cy;
-  result.distortion = camera.distortion;
-  result.size = cv::Size(camera.size.width, camera.size.height);
-  result.bf = settings.bf();
-  result.close_depth = settings.closeDepth();
   if (rectifier) {  // unrectified pair: track in the common camera of the rectified images
-    const auto& rectified = rectifier->rectifiedCamera();
-    result.fx = rectified.fx();
-    result.fy = rectified.fy();
-    result.cx = rectified.cx();
-    result.cy = rectified.cy();
-    result.distortion = {};
-    result.bf = rectifier->bf();
-    result.close_depth = settings.depth.thDepth * rectifier->baseline();
+    return {rectifier->rectifiedCamera(), rectifier->bf(),
+            settings.depth.thDepth * rectifier->baseline()};
   }
-  return result;
+  return {camera::PinholeCamera::fromSettings(settings.camera), settings.bf(),
+          settings.closeDepth()};
 }
 
 feature::OrbSettings orbSettingsFrom(const io::Settings& settings) {
@@ -160,7 +145,7 @@ System::System(const io::Settings& settings, const SystemOptions& options)
     tracker_params.dynamic_memory.strikes = detector_params_->memory_strikes;
   }
   tracker_ = std::make_unique<track::Tracker>(map_, *mapper_, camera, frame_builder_->pyramid(),
-                                              frame_builder_->extractor().levels(), tracker_params);
+                                              tracker_params);
   if (places_) {
     tracker_->setRelocalizer(
         std::make_shared<BowRelocalizer>(places_, map_, camera, frame_builder_->pyramid()));
@@ -337,7 +322,7 @@ void System::removeDynamicFeatures(track::Frame& frame, const cv::Mat& depth_m,
   if (result.dynamic_boxes.empty()) return;
 
   const auto& mask_params = detector_params_->mask;
-  cv::Mat mask = detect::makeDynamicMask(frame_builder_->camera().size, result.dynamic_boxes,
+  cv::Mat mask = detect::makeDynamicMask(frame_builder_->camera().size(), result.dynamic_boxes,
                                          mask_params.margin_px);
   // RGB-D: the background seen behind a person keeps its features.
   if (!depth_m.empty())

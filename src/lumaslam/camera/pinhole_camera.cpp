@@ -70,4 +70,16 @@ std::vector<cv::Point2f> PinholeCamera::distortPoints(const std::vector<cv::Poin
   return {raw.begin(), raw.end()};
 }
 
+cv::Rect2f PinholeCamera::undistortedBounds() const {
+  const auto w = static_cast<float>(size_.width);
+  const auto h = static_cast<float>(size_.height);
+  if (!hasDistortion()) return {0.0F, 0.0F, w, h};
+  const auto corners = undistortPoints({{0, 0}, {w, 0}, {0, h}, {w, h}});
+  const float x0 = std::min(corners[0].x, corners[2].x);
+  const float x1 = std::max(corners[1].x, corners[3].x);
+  const float y0 = std::min(corners[0].y, corners[1].y);
+  const float y1 = std::max(corners[2].y, corners[3].y);
+  return {x0, y0, x1 - x0, y1 - y0};
+}
+
 }  // namespace lumaslam::camera

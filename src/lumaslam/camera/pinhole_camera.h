@@ -50,6 +50,8 @@ class PinholeCamera {
   std::vector<cv::KeyPoint> undistortKeypoints(const std::vector<cv::KeyPoint>& raw) const;
   // Ideal pixels -> raw pixels (cv::projectPoints): where a pinhole pixel lands in the image.
   std::vector<cv::Point2f> distortPoints(const std::vector<cv::Point2f>& ideal) const;
+  // Bounding box of the undistorted image corners: where undistorted keypoints can lie.
+  cv::Rect2f undistortedBounds() const;
 
   // OpenCV's default 5 fixed-point iterations leave errors up to 0.57 px at the corners of
   // the EuRoC lens (k1 = -0.28); iterating to 1e-3 px costs about 2.5x (~0.8 ms per 1000 points).

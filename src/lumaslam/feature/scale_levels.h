@@ -1,7 +1,9 @@
 #pragma once
-// Per-level scale of the ORB image pyramid: level l is the image shrunk by scaleFactor^l.
+// Per-level scale of the ORB image pyramid (ORB-SLAM's mvScaleFactor / mvLevelSigma2): level l
+// is the image shrunk by scaleFactor^l. Extraction, matching, keyframes and map points share one.
 // sigma2(l) = scale(l)^2 is the keypoint position variance (in level-0 pixels²) that
 // reprojection-error chi² tests divide by.
+#include <cmath>
 #include <vector>
 
 namespace lumaslam::feature {
@@ -12,6 +14,7 @@ class ScaleLevels {
 
   int count() const { return static_cast<int>(scale_.size()); }
   float scaleFactor() const { return scaleFactor_; }
+  double logScaleFactor() const { return std::log(static_cast<double>(scaleFactor_)); }
   float scale(int level) const { return scale_.at(level); }
   float inverseScale(int level) const { return inverseScale_.at(level); }
   float sigma2(int level) const { return sigma2_.at(level); }

@@ -41,16 +41,11 @@ std::vector<std::shared_ptr<map::MapPoint>> groupPoints(const KeyFramePtr& keyfr
   return points;
 }
 
-optimize::CameraIntrinsics cameraOf(const map::KeyFrame& keyframe) {
-  const auto& k = keyframe.intrinsics();
-  return {k.fx, k.fy, k.cx, k.cy, k.bf};
-}
-
 double invSigma2Of(const map::KeyFrame& keyframe, std::size_t feature) {
   const auto& pyramid = keyframe.pyramid();
   const int octave =
-      std::clamp(keyframe.features().keypoints[feature].octave, 0, pyramid.levels - 1);
-  return pyramid.inv_sigma2[static_cast<std::size_t>(octave)];
+      std::clamp(keyframe.features().keypoints[feature].octave, 0, pyramid.count() - 1);
+  return pyramid.inverseSigma2(octave);
 }
 
 // 3D-3D pairs for the Sim3 between `current` (1) and `loop` (2): each feature of `current`
@@ -239,8 +234,7 @@ bool LoopCloser::globalBundleAdjustment() {
       obs.pointId = point->id();
       obs.uv = {f.undistorted[i].x, f.undistorted[i].y};
       obs.uRight = k.bf > 0 ? f.u_right[i] : -1.0;
-      obs.invSigma2 =
-          kf->pyramid().inv_sigma2[static_cast<std::size_t>(std::max(0, f.keypoints[i].octave))];
+      obs.invSigma2 = kf->pyramid().inverseSigma2(std::max(0, f.keypoints[i].octave));
       problem.observations.push_back(obs);
       observed = true;
     }
@@ -344,7 +338,7 @@ std::optional<LoopMatch> LoopCloser::computeSim3Loop(const KeyFramePtr& current,
   const PointSlots bow = searchByBow(*candidate, candidate_nodes, current->features(),
                                      current_nodes, params_.bow_ratio, params_.bow_max_distance);
   if (countMatches(bow) < params_.min_bow_matches) return std::nullopt;
-  const auto camera = cameraOf(*current);
+  const CameraIntrinsics camera = current->intrinsics();
   const Sim3Pairs bow_pairs = sim3PairsOf(*current, *candidate, bow);
   const auto ransac = estimateSim3Ransac(bow_pairs.pairs, camera, params_.sim3);
   if (!ransac) return std::nullopt;

@@ -134,13 +134,13 @@ int refinePose(const MatchingFrame& frame, PointSlots& slots, SE3& T_c_w) {
     obs.X_w = slots[i]->position();
     obs.uv = {features.undistorted[i].x, features.undistorted[i].y};
     obs.uRight = features.hasStereo(i) && k.bf > 0 ? features.u_right[i] : -1.0;
-    const int octave = std::clamp(features.keypoints[i].octave, 0, frame.pyramid->levels - 1);
-    obs.invSigma2 = frame.pyramid->inv_sigma2[static_cast<std::size_t>(octave)];
+    const int octave = std::clamp(features.keypoints[i].octave, 0, frame.pyramid->count() - 1);
+    obs.invSigma2 = frame.pyramid->inverseSigma2(octave);
     problem.observations.push_back(obs);
     feature_of.push_back(i);
   }
   optimize::PoseOnlyOptions options;
-  options.batchResiduals = false;  // the layout the tracker uses (see Tracker::optimizeCurrentPose)
+  options.backend = optimize::PoseBackend::kLevenbergMarquardt;  // as Tracker::optimizeCurrentPose
   const auto result = optimize::optimizePose(problem, options);
   if (!result.success) return 0;
   T_c_w = result.T_c_w;
@@ -187,10 +187,8 @@ int searchByProjection(const MatchingFrame& frame,
   options.maxDistance = max_distance;
   options.ratio = 1.0F;
   options.checkRotation = check_rotation;
-  const feature::ScaleLevels levels(frame.pyramid->levels,
-                                    static_cast<float>(frame.pyramid->factor));
-  const auto matches = feature::matchByProjection(projected, *frame.features->grid,
-                                                  frame.features->descriptors, levels, options);
+  const auto matches = feature::matchByProjection(
+      projected, *frame.features->grid, frame.features->descriptors, *frame.pyramid, options);
   int added = 0;
   for (const auto& m : matches) {
     auto& slot = slots[static_cast<std::size_t>(m.trainIdx)];

@@ -9,11 +9,11 @@
 #include <opencv2/core.hpp>
 
 #include "lumaslam/core/pose.h"
+#include "lumaslam/feature/scale_levels.h"
 #include "lumaslam/loop/bow_vector.h"
 #include "lumaslam/map/feature_set.h"
 #include "lumaslam/map/keyframe.h"
 #include "lumaslam/map/map_point.h"
-#include "lumaslam/map/scale_pyramid.h"
 
 namespace lumaslam::loop {
 
@@ -22,8 +22,8 @@ using PointSlots = std::vector<std::shared_ptr<map::MapPoint>>;
 
 struct MatchingFrame {
   const map::FeatureSet* features = nullptr;
-  map::PinholeIntrinsics intrinsics;
-  const map::ScalePyramid* pyramid = nullptr;
+  CameraIntrinsics intrinsics;
+  const feature::ScaleLevels* pyramid = nullptr;
   cv::Rect2f bounds;  // where undistorted keypoints can lie (projection search)
 };
 

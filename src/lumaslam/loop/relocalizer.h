@@ -11,12 +11,12 @@
 
 #include "lumaslam/core/pose.h"
 #include "lumaslam/feature/hamming.h"
+#include "lumaslam/feature/scale_levels.h"
 #include "lumaslam/loop/keyframe_database.h"
 #include "lumaslam/loop/pose_matching.h"
 #include "lumaslam/loop/vocabulary.h"
 #include "lumaslam/map/feature_set.h"
 #include "lumaslam/map/map.h"
-#include "lumaslam/map/scale_pyramid.h"
 
 namespace lumaslam::loop {
 

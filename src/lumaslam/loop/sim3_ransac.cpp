@@ -22,7 +22,7 @@ std::optional<optimize::Sim3> umeyamaSim3(const Eigen::Matrix3Xd& X2, const Eige
 }
 
 std::vector<bool> inliersOf(const optimize::Sim3& S, const std::vector<optimize::Sim3Pair>& pairs,
-                            const optimize::CameraIntrinsics& camera, double chi2, int& count) {
+                            const CameraIntrinsics& camera, double chi2, int& count) {
   std::vector<bool> inlier(pairs.size(), false);
   count = 0;
   for (std::size_t p = 0; p < pairs.size(); ++p) {
@@ -44,7 +44,7 @@ bool nearlyCollinear(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const E
 }  // namespace
 
 std::optional<Sim3RansacResult> estimateSim3Ransac(const std::vector<optimize::Sim3Pair>& pairs,
-                                                   const optimize::CameraIntrinsics& camera,
+                                                   const CameraIntrinsics& camera,
                                                    const Sim3RansacParams& params) {
   const int n = static_cast<int>(pairs.size());
   if (n < 3 || n < params.min_inliers) return std::nullopt;

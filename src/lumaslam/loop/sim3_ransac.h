@@ -7,7 +7,7 @@
 #include <optional>
 #include <vector>
 
-#include "lumaslam/optimize/camera_intrinsics.h"
+#include "lumaslam/core/camera_intrinsics.h"
 #include "lumaslam/optimize/sim3.h"
 #include "lumaslam/optimize/sim3_alignment.h"
 
@@ -28,7 +28,7 @@ struct Sim3RansacResult {
 
 // nullopt when fewer than min_inliers pairs agree on one similarity.
 std::optional<Sim3RansacResult> estimateSim3Ransac(const std::vector<optimize::Sim3Pair>& pairs,
-                                                   const optimize::CameraIntrinsics& camera,
+                                                   const CameraIntrinsics& camera,
                                                    const Sim3RansacParams& params = {});
 
 }  // namespace lumaslam::loop

@@ -24,9 +24,4 @@ struct FeatureSet {
   bool hasStereo(std::size_t i) const { return i < u_right.size() && u_right[i] >= 0.0F; }
 };
 
-struct PinholeIntrinsics {
-  double fx = 0, fy = 0, cx = 0, cy = 0;
-  double bf = 0;  // baseline * fx (stereo and RGB-D); 0 for monocular
-};
-
 }  // namespace lumaslam::map

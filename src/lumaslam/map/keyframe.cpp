@@ -9,7 +9,8 @@ namespace lumaslam::map {
 
 KeyFrame::KeyFrame(Id id, std::size_t frame_index, double timestamp, const SE3& T_c_w,
                    std::shared_ptr<const FeatureSet> features,
-                   std::shared_ptr<const ScalePyramid> pyramid, const PinholeIntrinsics& intrinsics)
+                   std::shared_ptr<const feature::ScaleLevels> pyramid,
+                   const CameraIntrinsics& intrinsics)
     : id_(id),
       frame_index_(frame_index),
       timestamp_(timestamp),

@@ -8,10 +8,11 @@
 #include <set>
 #include <vector>
 
+#include "lumaslam/core/camera_intrinsics.h"
 #include "lumaslam/core/pose.h"
+#include "lumaslam/feature/scale_levels.h"
 #include "lumaslam/map/feature_set.h"
 #include "lumaslam/map/ids.h"
-#include "lumaslam/map/scale_pyramid.h"
 
 namespace lumaslam::map {
 
@@ -23,15 +24,15 @@ class KeyFrame : public std::enable_shared_from_this<KeyFrame> {
   static constexpr int kMinCovisibilityWeight = 15;
 
   KeyFrame(Id id, std::size_t frame_index, double timestamp, const SE3& T_c_w,
-           std::shared_ptr<const FeatureSet> features, std::shared_ptr<const ScalePyramid> pyramid,
-           const PinholeIntrinsics& intrinsics);
+           std::shared_ptr<const FeatureSet> features,
+           std::shared_ptr<const feature::ScaleLevels> pyramid, const CameraIntrinsics& intrinsics);
 
   Id id() const { return id_; }
   std::size_t frameIndex() const { return frame_index_; }
   double timestamp() const { return timestamp_; }
   const FeatureSet& features() const { return *features_; }
-  const ScalePyramid& pyramid() const { return *pyramid_; }
-  const PinholeIntrinsics& intrinsics() const { return intrinsics_; }
+  const feature::ScaleLevels& pyramid() const { return *pyramid_; }
+  const CameraIntrinsics& intrinsics() const { return intrinsics_; }
   Descriptor descriptor(std::size_t feature_index) const;
 
   SE3 T_c_w() const;
@@ -81,8 +82,8 @@ class KeyFrame : public std::enable_shared_from_this<KeyFrame> {
   const std::size_t frame_index_;
   const double timestamp_;
   const std::shared_ptr<const FeatureSet> features_;
-  const std::shared_ptr<const ScalePyramid> pyramid_;
-  const PinholeIntrinsics intrinsics_;
+  const std::shared_ptr<const feature::ScaleLevels> pyramid_;
+  const CameraIntrinsics intrinsics_;
 
   mutable std::mutex pose_mutex_;
   SE3 T_c_w_;

@@ -104,14 +104,14 @@ void MapPoint::updateNormalAndDepth() {
   const int level =
       index >= 0
           ? std::clamp(reference->features().keypoints[static_cast<std::size_t>(index)].octave, 0,
-                       pyramid.levels - 1)
+                       pyramid.count() - 1)
           : 0;
-  const double max_distance = distance * pyramid.scale[static_cast<std::size_t>(level)];
+  const double max_distance = distance * pyramid.scale(level);
 
   std::lock_guard lock(mutex_);
   normal_ = normal_sum.normalized();
   max_distance_ = max_distance;
-  min_distance_ = max_distance / pyramid.scale.back();
+  min_distance_ = max_distance / pyramid.scale(pyramid.count() - 1);
 }
 
 void MapPoint::computeDistinctiveDescriptor() {
@@ -138,7 +138,7 @@ void MapPoint::computeDistinctiveDescriptor() {
   descriptor_ = candidates[best];
 }
 
-int MapPoint::predictScale(double distance, const ScalePyramid& pyramid) const {
+int MapPoint::predictScale(double distance, const feature::ScaleLevels& pyramid) const {
   double max_distance = 0.0;
   {
     std::lock_guard lock(mutex_);
@@ -146,8 +146,8 @@ int MapPoint::predictScale(double distance, const ScalePyramid& pyramid) const {
   }
   if (distance <= 0.0 || max_distance <= 0.0) return 0;
   const int level =
-      static_cast<int>(std::ceil(std::log(max_distance / distance) / pyramid.logFactor()));
-  return std::clamp(level, 0, pyramid.levels - 1);
+      static_cast<int>(std::ceil(std::log(max_distance / distance) / pyramid.logScaleFactor()));
+  return std::clamp(level, 0, pyramid.count() - 1);
 }
 
 double MapPoint::foundRatio() const {

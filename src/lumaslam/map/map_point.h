@@ -10,8 +10,8 @@
 
 #include <Eigen/Core>
 
+#include "lumaslam/feature/scale_levels.h"
 #include "lumaslam/map/ids.h"
-#include "lumaslam/map/scale_pyramid.h"
 
 namespace lumaslam::map {
 
@@ -46,7 +46,7 @@ class MapPoint {
   // Choose as representative the observed descriptor with the least median distance to the
   // others (ORB-SLAM's ComputeDistinctiveDescriptors).
   void computeDistinctiveDescriptor();
-  int predictScale(double distance, const ScalePyramid& pyramid) const;
+  int predictScale(double distance, const feature::ScaleLevels& pyramid) const;
 
   // Tracking statistics: how often the point was predicted visible and how often matched.
   void increaseVisible(int n = 1) { visible_ += n; }

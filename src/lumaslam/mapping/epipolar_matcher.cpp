@@ -34,9 +34,9 @@ std::vector<std::pair<std::size_t, std::size_t>> matchForTriangulation(const map
     if (points2[j]) continue;
     const Eigen::Vector2d p2(f2.undistorted[j].x, f2.undistorted[j].y);
     const auto octave2 = static_cast<std::size_t>(f2.keypoints[j].octave);
-    const double scale2 = pyramid.scale[octave2];
+    const double scale2 = pyramid.scale(octave2);
     if (C1_in_2.z() > 0 && (p2 - epipole).squaredNorm() < 100.0 * scale2 * scale2) continue;
-    candidates.push_back({j, p2.x(), p2.y(), 3.84 * pyramid.sigma2[octave2]});
+    candidates.push_back({j, p2.x(), p2.y(), 3.84 * pyramid.sigma2(octave2)});
   }
 
   std::vector<int> best_for2(f2.size(), std::numeric_limits<int>::max());

@@ -30,7 +30,7 @@ double medianSceneDepth(const map::KeyFrame& keyframe) {
 }  // namespace
 
 LocalMapper::LocalMapper(std::shared_ptr<map::Map> map, const track::FrameCamera& camera,
-                         std::shared_ptr<const map::ScalePyramid> pyramid,
+                         std::shared_ptr<const feature::ScaleLevels> pyramid,
                          const LocalMapperParams& params)
     : map_(std::move(map)),
       camera_(camera),
@@ -139,7 +139,7 @@ void LocalMapper::triangulateNewPoints(const std::shared_ptr<map::KeyFrame>& key
   const Eigen::Vector3d C1 = keyframe->center();
   const auto& k = keyframe->intrinsics();
   const double baseline = k.bf > 0 ? k.bf / k.fx : 0.0;
-  const double ratio_factor = 1.5 * pyramid_->factor;
+  const double ratio_factor = 1.5 * pyramid_->scaleFactor();
   const auto& f1 = keyframe->features();
 
   for (const auto& neighbour : neighbours) {
@@ -180,9 +180,9 @@ void LocalMapper::triangulateNewPoints(const std::shared_ptr<map::KeyFrame>& key
       const int octave1 = f1.keypoints[i1].octave;
       const int octave2 = f2.keypoints[i2].octave;
       if (!reprojectionAcceptable(*X_w, T_c1_w, k, {p1.x, p1.y}, f1.u_right[i1],
-                                  pyramid_->sigma2[static_cast<std::size_t>(octave1)]) ||
+                                  pyramid_->sigma2(octave1)) ||
           !reprojectionAcceptable(*X_w, T_c2_w, k, {p2.x, p2.y}, f2.u_right[i2],
-                                  pyramid_->sigma2[static_cast<std::size_t>(octave2)])) {
+                                  pyramid_->sigma2(octave2))) {
         continue;
       }
       // Scale consistency: the distance ratio must agree with the pyramid-level ratio.
@@ -190,8 +190,7 @@ void LocalMapper::triangulateNewPoints(const std::shared_ptr<map::KeyFrame>& key
       const double d2 = (*X_w - C2).norm();
       if (d1 == 0 || d2 == 0) continue;
       const double ratio_distance = d2 / d1;
-      const double ratio_octave = pyramid_->scale[static_cast<std::size_t>(octave1)] /
-                                  pyramid_->scale[static_cast<std::size_t>(octave2)];
+      const double ratio_octave = pyramid_->scale(octave1) / pyramid_->scale(octave2);
       if (ratio_distance * ratio_factor < ratio_octave ||
           ratio_distance > ratio_octave * ratio_factor) {
         continue;
@@ -248,7 +247,7 @@ void LocalMapper::localBundleAdjustment(const std::shared_ptr<map::KeyFrame>& ke
   std::unordered_map<map::Id, std::shared_ptr<map::KeyFrame>> in_problem;
   const auto origin = map_->originKeyFrame();
   optimize::LocalBAProblem problem;
-  problem.camera = camera_.optimizerIntrinsics();
+  problem.camera = camera_.intrinsics();
   for (const auto& kf : local) {
     in_problem[kf->id()] = kf;
     problem.keyFrames.push_back({kf->id(), kf->T_c_w(), kf == origin});
@@ -281,7 +280,7 @@ void LocalMapper::localBundleAdjustment(const std::shared_ptr<map::KeyFrame>& ke
       obs.pointId = point->id();
       obs.uv = {f.undistorted[i].x, f.undistorted[i].y};
       obs.uRight = f.u_right[i];
-      obs.invSigma2 = pyramid_->inv_sigma2[static_cast<std::size_t>(f.keypoints[i].octave)];
+      obs.invSigma2 = pyramid_->inverseSigma2(f.keypoints[i].octave);
       problem.observations.push_back(obs);
       refs.push_back({kf, point, i});
     }

@@ -34,7 +34,7 @@ struct LocalMapperParams {
 class LocalMapper : public track::KeyFrameSink {
  public:
   LocalMapper(std::shared_ptr<map::Map> map, const track::FrameCamera& camera,
-              std::shared_ptr<const map::ScalePyramid> pyramid, const LocalMapperParams& params);
+              std::shared_ptr<const feature::ScaleLevels> pyramid, const LocalMapperParams& params);
   ~LocalMapper() override;
   LocalMapper(const LocalMapper&) = delete;
   LocalMapper& operator=(const LocalMapper&) = delete;
@@ -68,7 +68,7 @@ class LocalMapper : public track::KeyFrameSink {
 
   std::shared_ptr<map::Map> map_;
   track::FrameCamera camera_;
-  std::shared_ptr<const map::ScalePyramid> pyramid_;
+  std::shared_ptr<const feature::ScaleLevels> pyramid_;
   LocalMapperParams params_;
 
   std::mutex processing_mutex_;  // held while a keyframe is processed

@@ -28,8 +28,7 @@ int fusePointsInto(map::Map& map, const std::shared_ptr<map::KeyFrame>& target,
     if (distance < point->minDistance() || distance > point->maxDistance()) continue;
     if (ray.dot(point->normal()) < 0.5 * distance) continue;
     const int level = point->predictScale(distance, pyramid);
-    const float window =
-        radius * static_cast<float>(pyramid.scale[static_cast<std::size_t>(level)]);
+    const float window = radius * static_cast<float>(pyramid.scale(level));
     const auto candidates = features.grid->featuresInArea(
         cv::Point2f(static_cast<float>(u), static_cast<float>(v)), window);
     const auto descriptor = point->descriptor();
@@ -39,8 +38,7 @@ int fusePointsInto(map::Map& map, const std::shared_ptr<map::KeyFrame>& target,
       const int octave = features.keypoints[i].octave;
       if (octave < level - 1 || octave > level) continue;
       const Eigen::Vector2d uv(features.undistorted[i].x, features.undistorted[i].y);
-      if (!reprojectionAcceptable(X_w, T_c_w, k, uv, features.u_right[i],
-                                  pyramid.sigma2[static_cast<std::size_t>(octave)])) {
+      if (!reprojectionAcceptable(X_w, T_c_w, k, uv, features.u_right[i], pyramid.sigma2(octave))) {
         continue;
       }
       const int d = feature::hammingDistance(

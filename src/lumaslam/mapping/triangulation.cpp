@@ -19,8 +19,7 @@ std::optional<Eigen::Vector3d> triangulateLinear(const Eigen::Vector2d& x1, cons
   return Eigen::Vector3d(X.head<3>() / X.w());
 }
 
-Eigen::Matrix3d fundamental21(const SE3& T_c1_w, const SE3& T_c2_w,
-                              const map::PinholeIntrinsics& k) {
+Eigen::Matrix3d fundamental21(const SE3& T_c1_w, const SE3& T_c2_w, const CameraIntrinsics& k) {
   const SE3 T_21 = T_c2_w * T_c1_w.inverse();
   const Eigen::Matrix3d R = T_21.rotation();
   const Eigen::Vector3d t = T_21.translation();
@@ -40,9 +39,8 @@ double epipolarDistance2(const Eigen::Matrix3d& F21, const Eigen::Vector2d& p1,
   return den > 0 ? num * num / den : std::numeric_limits<double>::infinity();
 }
 
-bool reprojectionAcceptable(const Eigen::Vector3d& X_w, const SE3& T_c_w,
-                            const map::PinholeIntrinsics& k, const Eigen::Vector2d& uv,
-                            double u_right, double sigma2) {
+bool reprojectionAcceptable(const Eigen::Vector3d& X_w, const SE3& T_c_w, const CameraIntrinsics& k,
+                            const Eigen::Vector2d& uv, double u_right, double sigma2) {
   const Eigen::Vector3d X_c = T_c_w * X_w;
   if (X_c.z() <= 0) return false;
   const double inv_z = 1.0 / X_c.z();

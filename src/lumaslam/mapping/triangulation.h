@@ -5,6 +5,7 @@
 
 #include <Eigen/Core>
 
+#include "lumaslam/core/camera_intrinsics.h"
 #include "lumaslam/core/pose.h"
 #include "lumaslam/map/feature_set.h"
 
@@ -15,8 +16,7 @@ std::optional<Eigen::Vector3d> triangulateLinear(const Eigen::Vector2d& x1, cons
                                                  const Eigen::Vector2d& x2, const SE3& T_c2_w);
 
 // Fundamental matrix mapping points of view 1 to epipolar lines in view 2 (l2 = F21 x1).
-Eigen::Matrix3d fundamental21(const SE3& T_c1_w, const SE3& T_c2_w,
-                              const map::PinholeIntrinsics& k);
+Eigen::Matrix3d fundamental21(const SE3& T_c1_w, const SE3& T_c2_w, const CameraIntrinsics& k);
 
 // Squared distance of pixel p2 to the epipolar line of pixel p1.
 double epipolarDistance2(const Eigen::Matrix3d& F21, const Eigen::Vector2d& p1,
@@ -24,8 +24,7 @@ double epipolarDistance2(const Eigen::Matrix3d& F21, const Eigen::Vector2d& p1,
 
 // Chi-square reprojection test of X_w in a view: mono (u, v) at 5.991 or stereo (u, v, u_r)
 // at 7.815, with the keypoint's level variance sigma2.
-bool reprojectionAcceptable(const Eigen::Vector3d& X_w, const SE3& T_c_w,
-                            const map::PinholeIntrinsics& k, const Eigen::Vector2d& uv,
-                            double u_right, double sigma2);
+bool reprojectionAcceptable(const Eigen::Vector3d& X_w, const SE3& T_c_w, const CameraIntrinsics& k,
+                            const Eigen::Vector2d& uv, double u_right, double sigma2);
 
 }  // namespace lumaslam::mapping

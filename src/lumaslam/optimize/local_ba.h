@@ -11,8 +11,8 @@
 
 #include <Eigen/Core>
 
+#include "lumaslam/core/camera_intrinsics.h"
 #include "lumaslam/core/pose.h"
-#include "lumaslam/optimize/camera_intrinsics.h"
 #include "lumaslam/optimize/robust_thresholds.h"
 
 namespace lumaslam::optimize {

@@ -18,8 +18,8 @@
 #include <ceres/cost_function.h>
 #include <Eigen/Core>
 
+#include "lumaslam/core/camera_intrinsics.h"
 #include "lumaslam/core/pose.h"
-#include "lumaslam/optimize/camera_intrinsics.h"
 #include "lumaslam/optimize/pose_only.h"
 
 namespace lumaslam::optimize {

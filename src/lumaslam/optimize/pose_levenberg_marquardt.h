@@ -9,8 +9,8 @@
 // Pose update as se3_parameter.h: T' = [Exp(omega) | upsilon] * T.
 #include <vector>
 
+#include "lumaslam/core/camera_intrinsics.h"
 #include "lumaslam/core/pose.h"
-#include "lumaslam/optimize/camera_intrinsics.h"
 #include "lumaslam/optimize/pose_only.h"
 
 namespace lumaslam::optimize {

@@ -6,7 +6,7 @@
 
 #include <Eigen/Core>
 
-#include "lumaslam/optimize/camera_intrinsics.h"
+#include "lumaslam/core/camera_intrinsics.h"
 
 namespace lumaslam::optimize {
 

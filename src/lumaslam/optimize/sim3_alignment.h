@@ -10,7 +10,7 @@
 
 #include <Eigen/Core>
 
-#include "lumaslam/optimize/camera_intrinsics.h"
+#include "lumaslam/core/camera_intrinsics.h"
 #include "lumaslam/optimize/sim3.h"
 
 namespace lumaslam::optimize {

@@ -7,6 +7,7 @@
 
 #include <opencv2/core.hpp>
 
+#include "lumaslam/core/camera_intrinsics.h"
 #include "lumaslam/core/pose.h"
 #include "lumaslam/map/feature_set.h"
 #include "lumaslam/map/keyframe.h"
@@ -30,7 +31,7 @@ struct Frame {
     outliers.assign(size(), false);
   }
   // Camera-frame point of a feature with depth (undistorted pixel back-projected).
-  Eigen::Vector3d unprojectCamera(std::size_t i, const map::PinholeIntrinsics& k) const {
+  Eigen::Vector3d unprojectCamera(std::size_t i, const CameraIntrinsics& k) const {
     const auto& p = features->undistorted[i];
     const double z = features->depth[i];
     return {(p.x - k.cx) * z / k.fx, (p.y - k.cy) * z / k.fy, z};

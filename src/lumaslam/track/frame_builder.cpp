@@ -13,10 +13,10 @@ namespace {
 
 std::optional<feature::StereoMatcher> stereoMatcherFor(const FrameCamera& camera,
                                                        const feature::ScaleLevels& levels) {
-  if (!(camera.bf > 0.0) || !(camera.fx > 0.0)) return std::nullopt;
+  if (!(camera.bf > 0.0)) return std::nullopt;
   feature::StereoMatcherParams params;
   params.bf = camera.bf;
-  params.minDepth = camera.bf / camera.fx;  // ORB-SLAM: nothing closer than one baseline
+  params.minDepth = camera.bf / camera.pinhole.fx();  // ORB-SLAM: nothing closer than one baseline
   return feature::StereoMatcher(params, levels);
 }
 
@@ -26,15 +26,14 @@ FrameBuilder::FrameBuilder(const FrameCamera& camera, const feature::OrbSettings
     : camera_(camera),
       extractor_(orb),
       stereo_matcher_(stereoMatcherFor(camera, extractor_.levels())),
-      pyramid_(std::make_shared<const map::ScalePyramid>(
-          map::ScalePyramid::make(orb.nLevels, orb.scaleFactor))),
-      bounds_(camera.undistortedBounds()) {}
+      pyramid_(std::make_shared<const feature::ScaleLevels>(extractor_.levels())),
+      bounds_(camera.pinhole.undistortedBounds()) {}
 
 void FrameBuilder::checkImage(std::size_t index, const cv::Mat& gray, const char* what) const {
   if (gray.type() != CV_8UC1) fail("frame {}: expected an 8-bit gray {}", index, what);
-  if (gray.size() != camera_.size) {
+  if (gray.size() != camera_.size()) {
     fail("frame {}: {} is {}x{}, the settings say {}x{}", index, what, gray.cols, gray.rows,
-         camera_.size.width, camera_.size.height);
+         camera_.size().width, camera_.size().height);
   }
 }
 
@@ -47,11 +46,7 @@ std::shared_ptr<map::FeatureSet> FrameBuilder::featureSetFrom(
 
   std::vector<cv::Point2f> points(n);
   for (std::size_t i = 0; i < n; ++i) points[i] = features->keypoints[i].pt;
-  if (camera_.hasDistortion() && n > 0) {
-    cv::undistortPoints(points, points, camera_.K(), cv::Mat(camera_.distortion), cv::noArray(),
-                        camera_.K());
-  }
-  features->undistorted = std::move(points);
+  features->undistorted = camera_.pinhole.undistortPoints(points);
   features->depth.assign(n, -1.0F);
   features->u_right.assign(n, -1.0F);
   return features;
@@ -98,7 +93,7 @@ Frame FrameBuilder::build(std::size_t index, double timestamp, const cv::Mat& gr
 
 Frame FrameBuilder::buildStereo(std::size_t index, double timestamp, const cv::Mat& left,
                                 const cv::Mat& right, const cv::Mat& mask) const {
-  if (!stereo_matcher_ || camera_.hasDistortion()) {
+  if (!stereo_matcher_ || camera_.pinhole.hasDistortion()) {
     fail("frame {}: stereo frames need a rectified camera (no distortion) with bf > 0", index);
   }
   checkImage(index, left, "left image");

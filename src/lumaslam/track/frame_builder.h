@@ -9,8 +9,8 @@
 #include <opencv2/core.hpp>
 
 #include "lumaslam/feature/orb_extractor.h"
+#include "lumaslam/feature/scale_levels.h"
 #include "lumaslam/feature/stereo_matcher.h"
-#include "lumaslam/map/scale_pyramid.h"
 #include "lumaslam/track/frame.h"
 #include "lumaslam/track/frame_camera.h"
 
@@ -31,7 +31,7 @@ class FrameBuilder {
 
   const FrameCamera& camera() const { return camera_; }
   const feature::OrbExtractor& extractor() const { return extractor_; }
-  const std::shared_ptr<const map::ScalePyramid>& pyramid() const { return pyramid_; }
+  const std::shared_ptr<const feature::ScaleLevels>& pyramid() const { return pyramid_; }
 
  private:
   void checkImage(std::size_t index, const cv::Mat& gray, const char* what) const;
@@ -43,7 +43,7 @@ class FrameBuilder {
   FrameCamera camera_;
   feature::OrbExtractor extractor_;
   std::optional<feature::StereoMatcher> stereo_matcher_;  // when bf > 0
-  std::shared_ptr<const map::ScalePyramid> pyramid_;
+  std::shared_ptr<const feature::ScaleLevels> pyramid_;
   cv::Rect2f bounds_;
 };
 

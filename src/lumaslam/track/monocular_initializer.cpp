@@ -5,17 +5,9 @@
 #include "lumaslam/feature/descriptor_matcher.h"
 
 namespace lumaslam::track {
-namespace {
-
-cv::Matx33d intrinsicMatrix(const FrameCamera& camera) {
-  return {camera.fx, 0, camera.cx, 0, camera.fy, camera.cy, 0, 0, 1};
-}
-
-}  // namespace
-
 MonocularInitializer::MonocularInitializer(const FrameCamera& camera,
                                            const MonocularInitParams& params)
-    : params_(params), two_view_(intrinsicMatrix(camera), params.two_view) {}
+    : params_(params), two_view_(camera.pinhole.K(), params.two_view) {}
 
 void MonocularInitializer::setReference(const Frame& frame) {
   reference_ = frame;

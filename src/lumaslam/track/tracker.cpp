@@ -26,15 +26,13 @@ const char* toString(TrackingState state) {
 }
 
 Tracker::Tracker(std::shared_ptr<map::Map> map, KeyFrameSink& mapper, const FrameCamera& camera,
-                 std::shared_ptr<const map::ScalePyramid> pyramid, feature::ScaleLevels levels,
-                 const TrackerParams& params)
+                 std::shared_ptr<const feature::ScaleLevels> pyramid, const TrackerParams& params)
     : map_(std::move(map)),
       mapper_(mapper),
       camera_(camera),
       pyramid_(std::move(pyramid)),
-      levels_(std::move(levels)),
       params_(params),
-      bounds_(camera.undistortedBounds()),
+      bounds_(camera.pinhole.undistortedBounds()),
       dynamic_memory_(params.dynamic_memory) {}
 
 TrackingOutcome Tracker::track(Frame frame) {
@@ -196,8 +194,9 @@ int Tracker::searchLastFrame(float radius) {
     if (!point || last_.outliers[i]) continue;
     const Eigen::Vector3d X_c = T_c_w * point->position();
     if (X_c.z() <= 0) continue;
-    const cv::Point2f uv(static_cast<float>(camera_.fx * X_c.x() / X_c.z() + camera_.cx),
-                         static_cast<float>(camera_.fy * X_c.y() / X_c.z() + camera_.cy));
+    const Eigen::Vector2d projected_uv = camera_.pinhole.project(X_c);
+    const cv::Point2f uv(static_cast<float>(projected_uv.x()),
+                         static_cast<float>(projected_uv.y()));
     if (!bounds_.contains(uv)) continue;
     const auto& kp = last_.features->keypoints[i];
     feature::ProjectedPoint p;
@@ -212,8 +211,8 @@ int Tracker::searchLastFrame(float radius) {
   options.radius = radius;
   options.ratio = 1.0F;
   options.checkRotation = true;
-  const auto matches = feature::matchByProjection(projected, *current_.features->grid,
-                                                  current_.features->descriptors, levels_, options);
+  const auto matches = feature::matchByProjection(
+      projected, *current_.features->grid, current_.features->descriptors, *pyramid_, options);
   for (const auto& m : matches) {
     current_.points[static_cast<std::size_t>(m.trainIdx)] =
         last_.points[source[static_cast<std::size_t>(m.queryIdx)]];
@@ -223,7 +222,7 @@ int Tracker::searchLastFrame(float radius) {
 
 int Tracker::optimizeCurrentPose() {
   optimize::PoseOnlyProblem problem;
-  problem.camera = camera_.optimizerIntrinsics();
+  problem.camera = camera_.intrinsics();
   problem.T_c_w = *current_.T_c_w;
   std::vector<std::size_t> feature_of;
   for (std::size_t i = 0; i < current_.size(); ++i) {
@@ -235,8 +234,8 @@ int Tracker::optimizeCurrentPose() {
     const auto& uv = current_.features->undistorted[i];
     obs.uv = {uv.x, uv.y};
     obs.uRight = current_.features->u_right[i];
-    const int octave = std::clamp(current_.features->keypoints[i].octave, 0, pyramid_->levels - 1);
-    obs.invSigma2 = pyramid_->inv_sigma2[static_cast<std::size_t>(octave)];
+    const int octave = std::clamp(current_.features->keypoints[i].octave, 0, pyramid_->count() - 1);
+    obs.invSigma2 = pyramid_->inverseSigma2(octave);
     problem.observations.push_back(obs);
     feature_of.push_back(i);
   }
@@ -298,8 +297,9 @@ int Tracker::searchReferencePoints(float radius) {
     const Eigen::Vector3d X_w = point->position();
     const Eigen::Vector3d X_c = T_c_w * X_w;
     if (X_c.z() <= 0) return;
-    const cv::Point2f uv(static_cast<float>(camera_.fx * X_c.x() / X_c.z() + camera_.cx),
-                         static_cast<float>(camera_.fy * X_c.y() / X_c.z() + camera_.cy));
+    const Eigen::Vector2d projected_uv = camera_.pinhole.project(X_c);
+    const cv::Point2f uv(static_cast<float>(projected_uv.x()),
+                         static_cast<float>(projected_uv.y()));
     if (!bounds_.contains(uv)) return;
     feature::ProjectedPoint p;
     p.uv = uv;
@@ -319,8 +319,8 @@ int Tracker::searchReferencePoints(float radius) {
   options.ratio = 0.8F;
   options.levelsBelow = 2;
   options.levelsAbove = 2;
-  const auto matches = feature::matchByProjection(projected, *current_.features->grid,
-                                                  current_.features->descriptors, levels_, options);
+  const auto matches = feature::matchByProjection(
+      projected, *current_.features->grid, current_.features->descriptors, *pyramid_, options);
   for (const auto& m : matches) {
     current_.points[static_cast<std::size_t>(m.trainIdx)] =
         source[static_cast<std::size_t>(m.queryIdx)];
@@ -423,8 +423,9 @@ int Tracker::searchLocalPoints() {
     const Eigen::Vector3d X_w = point->position();
     const Eigen::Vector3d X_c = T_c_w * X_w;
     if (X_c.z() <= 0) continue;
-    const cv::Point2f uv(static_cast<float>(camera_.fx * X_c.x() / X_c.z() + camera_.cx),
-                         static_cast<float>(camera_.fy * X_c.y() / X_c.z() + camera_.cy));
+    const Eigen::Vector2d projected_uv = camera_.pinhole.project(X_c);
+    const cv::Point2f uv(static_cast<float>(projected_uv.x()),
+                         static_cast<float>(projected_uv.y()));
     if (!bounds_.contains(uv)) continue;
     // ORB-SLAM's isInFrustum: inside the scale-invariance range and seen from within 60 deg.
     const Eigen::Vector3d ray = X_w - center;
@@ -444,8 +445,8 @@ int Tracker::searchLocalPoints() {
   options.ratio = 0.8F;
   options.levelsBelow = 1;
   options.levelsAbove = 0;
-  const auto matches = feature::matchByProjection(projected, *current_.features->grid,
-                                                  current_.features->descriptors, levels_, options);
+  const auto matches = feature::matchByProjection(
+      projected, *current_.features->grid, current_.features->descriptors, *pyramid_, options);
   int added = 0;
   for (const auto& m : matches) {
     auto& slot = current_.points[static_cast<std::size_t>(m.trainIdx)];

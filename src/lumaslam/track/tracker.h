@@ -54,8 +54,7 @@ struct TrackingOutcome {
 class Tracker {
  public:
   Tracker(std::shared_ptr<map::Map> map, KeyFrameSink& mapper, const FrameCamera& camera,
-          std::shared_ptr<const map::ScalePyramid> pyramid, feature::ScaleLevels levels,
-          const TrackerParams& params);
+          std::shared_ptr<const feature::ScaleLevels> pyramid, const TrackerParams& params);
 
   TrackingOutcome track(Frame frame);
 
@@ -96,8 +95,7 @@ class Tracker {
   std::shared_ptr<map::Map> map_;
   KeyFrameSink& mapper_;
   FrameCamera camera_;
-  std::shared_ptr<const map::ScalePyramid> pyramid_;
-  feature::ScaleLevels levels_;
+  std::shared_ptr<const feature::ScaleLevels> pyramid_;
   TrackerParams params_;
   cv::Rect2f bounds_;
 
