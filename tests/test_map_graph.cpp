@@ -45,7 +45,7 @@ struct LineScene {
       T_w_c.translation() = Eigen::Vector3d(0.5 * k, 0, 0);
       auto kf = std::make_shared<lm::KeyFrame>(map.nextKeyFrameId(), static_cast<std::size_t>(k),
                                                0.1 * k, T_w_c.inverse(), features, pyramid,
-                                               CameraIntrinsics{500, 500, 320, 240, 0});
+                                               lumaslam::CameraIntrinsics{500, 500, 320, 240, 0});
       map.addKeyFrame(kf);
       for (std::size_t i = 0; i < seen_by[k].size(); ++i) {
         const int j = seen_by[k][i];
