@@ -4,6 +4,7 @@
 #include <bit>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 
 #include <opencv2/core/hal/intrin.hpp>
 #include <opencv2/imgproc.hpp>
@@ -17,7 +18,11 @@ namespace {
 
 // BGR texel as floats in lanes 0-2 (lane 3 is the next texel's blue, unused).
 inline cv::v_float32x4 texel(const std::uint8_t* p) {
-  return cv::v_cvt_f32(cv::v_reinterpret_as_s32(cv::v_load_expand_q(p)));
+  // v_load_expand_q reads its 4 bytes as one int; texels are 3 bytes apart, so copy them to
+  // an aligned word first (a misaligned int load is undefined; the copy compiles to one load).
+  alignas(4) std::uint8_t word[4];
+  std::memcpy(word, p, sizeof(word));
+  return cv::v_cvt_f32(cv::v_reinterpret_as_s32(cv::v_load_expand_q(word)));
 }
 
 // Bilinear lookup in texels of one level, 0..255 per channel.
