@@ -210,7 +210,8 @@ TEST(StereoMatcher, LeavesAmbiguousFeaturesUnmatched) {
   const double shift = 6.0;
   cv::Mat right = movedLeft(pair.left, shift);
   const cv::Range band(300, 420);
-  right.colRange(band).copyTo(right.colRange(band.start - 100, band.end - 100));
+  // (cloned first: the two column ranges overlap, and copyTo would memcpy overlapping rows)
+  right.colRange(band).clone().copyTo(right.colRange(band.start - 100, band.end - 100));
 
   const auto extractor = makeExtractor();
   const auto left = extractor.extract(pair.left);
