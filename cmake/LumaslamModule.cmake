@@ -5,6 +5,14 @@ function(lumaslam_target_defaults target)
     return()
   endif()
   target_link_options(${target} PRIVATE -fsanitize=${LUMASLAM_SANITIZE})
+  if(LUMASLAM_SANITIZE MATCHES "address")
+    # Eigen assumes glibc's malloc is 16-byte aligned except when __SANITIZE_ADDRESS__ is set;
+    # then it over-allocates and frees with its own offset. Ceres and OpenCV are not rebuilt
+    # with ASan, so an Eigen matrix allocated inside libceres (GradientChecker's Jacobians)
+    # and freed in our code would be freed at the wrong address. Keep one convention: ASan's
+    # malloc is 16-byte aligned on x86-64 too.
+    target_compile_definitions(${target} PRIVATE EIGEN_MALLOC_ALREADY_ALIGNED=1)
+  endif()
   if(target MATCHES "${LUMASLAM_SANITIZE_TARGETS}")
     # -O1 (after the build type's -O3, so it wins): sanitizer builds compile much faster and
     # keep usable stack traces; their reports do not depend on the optimisation level.
