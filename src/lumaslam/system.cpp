@@ -10,6 +10,7 @@
 #include "lumaslam/bow_relocalizer.h"
 #include "lumaslam/camera/stereo_rectifier.h"
 #include "lumaslam/core/error.h"
+#include "lumaslam/core/gray_image.h"
 #include "lumaslam/detect/detection_worker.h"
 #include "lumaslam/detect/detector_factory.h"
 #include "lumaslam/detect/detector_spec.h"
@@ -173,10 +174,7 @@ System::Images System::prepareImages(const cv::Mat& image, FrameTiming& timing,
     timing.enhance += msSince(start);
     return {enhanced.gray, enhanced_for_detector ? enhanced.colour : image};
   }
-  if (image.channels() == 1) return {image, image};
-  cv::Mat gray;
-  cv::cvtColor(image, gray, image.channels() == 4 ? cv::COLOR_BGRA2GRAY : cv::COLOR_BGR2GRAY);
-  return {gray, image};
+  return {toGray(image), image};
 }
 
 // Runs beside prepareImages() of the left image: without enhancement, that touches no state;

@@ -7,16 +7,10 @@
 #include <opencv2/video/tracking.hpp>
 
 #include "lumaslam/core/error.h"
+#include "lumaslam/core/gray_image.h"
 
 namespace lumaslam::detect {
 namespace {
-
-cv::Mat toGray(const cv::Mat& image) {
-  if (image.channels() == 1) return image;
-  cv::Mat gray;
-  cv::cvtColor(image, gray, image.channels() == 4 ? cv::COLOR_BGRA2GRAY : cv::COLOR_BGR2GRAY);
-  return gray;
-}
 
 float median(std::vector<float> values) {
   const auto middle = values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2);

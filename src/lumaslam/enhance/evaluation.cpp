@@ -6,18 +6,12 @@
 #include <opencv2/imgproc.hpp>
 
 #include "lumaslam/core/error.h"
+#include "lumaslam/core/gray_image.h"
 #include "lumaslam/enhance/enhancer.h"
 #include "lumaslam/enhance/value_channel.h"
 
 namespace lumaslam::enhance {
 namespace {
-
-cv::Mat toGray(const cv::Mat& image) {
-  if (image.channels() == 1) return image;
-  cv::Mat gray;
-  cv::cvtColor(image, gray, image.channels() == 4 ? cv::COLOR_BGRA2GRAY : cv::COLOR_BGR2GRAY);
-  return gray;
-}
 
 cv::Mat readColour(const std::filesystem::path& path) {
   cv::Mat image = cv::imread(path.string(), cv::IMREAD_COLOR);

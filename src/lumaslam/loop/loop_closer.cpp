@@ -13,6 +13,7 @@
 
 #include "lumaslam/map/keyframe.h"
 #include "lumaslam/map/map_point.h"
+#include "lumaslam/mapping/ba_observation.h"
 #include "lumaslam/mapping/point_fusion.h"
 #include "lumaslam/optimize/local_ba.h"
 #include "lumaslam/optimize/pose_graph.h"
@@ -227,15 +228,8 @@ bool LoopCloser::globalBundleAdjustment() {
     bool observed = false;
     for (const auto& [kf, index] : point->observations()) {
       if (!snapshot.contains(kf->id())) continue;
-      const auto i = static_cast<std::size_t>(index);
-      const auto& f = kf->features();
-      optimize::BAObservation obs;
-      obs.keyFrameId = kf->id();
-      obs.pointId = point->id();
-      obs.uv = {f.undistorted[i].x, f.undistorted[i].y};
-      obs.uRight = k.bf > 0 ? f.u_right[i] : -1.0;
-      obs.invSigma2 = kf->pyramid().inverseSigma2(std::max(0, f.keypoints[i].octave));
-      problem.observations.push_back(obs);
+      problem.observations.push_back(
+          mapping::baObservation(*kf, static_cast<std::size_t>(index), point->id()));
       observed = true;
     }
     if (!observed) continue;

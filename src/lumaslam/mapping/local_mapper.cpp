@@ -6,6 +6,7 @@
 
 #include <spdlog/spdlog.h>
 
+#include "lumaslam/mapping/ba_observation.h"
 #include "lumaslam/mapping/epipolar_matcher.h"
 #include "lumaslam/mapping/point_fusion.h"
 #include "lumaslam/mapping/triangulation.h"
@@ -274,14 +275,7 @@ void LocalMapper::localBundleAdjustment(const std::shared_ptr<map::KeyFrame>& ke
         problem.keyFrames.push_back({kf->id(), kf->T_c_w(), true});  // outer: fixed gauge
       }
       const auto i = static_cast<std::size_t>(index);
-      const auto& f = kf->features();
-      optimize::BAObservation obs;
-      obs.keyFrameId = kf->id();
-      obs.pointId = point->id();
-      obs.uv = {f.undistorted[i].x, f.undistorted[i].y};
-      obs.uRight = f.u_right[i];
-      obs.invSigma2 = pyramid_->inverseSigma2(f.keypoints[i].octave);
-      problem.observations.push_back(obs);
+      problem.observations.push_back(baObservation(*kf, i, point->id()));
       refs.push_back({kf, point, i});
     }
   }
