@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include "error_of.h"
 #include "lumaslam/core/error.h"
 #include "lumaslam/core/settings_file.h"
 #include "lumaslam/detect/box_file_detector.h"
@@ -22,14 +23,7 @@ std::filesystem::path writeFile(const test::TempDir& dir, const std::string& nam
   return path;
 }
 
-std::string errorOf(const std::function<void()>& action) {
-  try {
-    action();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
-}
+using test::errorOf;
 
 TEST(BoxFileDetector, MatchesFramesToTheNearestTimestampWithinTolerance) {
   test::TempDir dir("detect_box_file");

@@ -2,7 +2,6 @@
 // rotation and scale behaviour, descriptors identical to cv::ORB's, bad input.
 #include <algorithm>
 #include <cmath>
-#include <filesystem>
 #include <map>
 
 #include <gtest/gtest.h>
@@ -17,34 +16,14 @@
 #include "lumaslam/feature/orb_extractor.h"
 #include "lumaslam/feature/projection_matcher.h"
 #include "lumaslam/feature/steered_brief.h"
-#include "test_paths.h"
+#include "real_frames.h"
 
 namespace lumaslam::feature {
 namespace {
 
-namespace fs = std::filesystem;
-
-fs::path eurocFrame(const std::string& camera, int index) {
-  std::vector<fs::path> files;
-  for (const auto& entry :
-       fs::directory_iterator(test::dataDir() / "euroc/V1_01_easy_micro/mav0" / camera / "data")) {
-    files.push_back(entry.path());
-  }
-  std::sort(files.begin(), files.end());
-  return files.at(index);
-}
-
-fs::path kittiFrame(int index) {
-  char name[16];
-  std::snprintf(name, sizeof(name), "%06d.png", index);
-  return test::dataDir() / "kitti/odometry_07_first160/sequences/07/image_0" / name;
-}
-
-cv::Mat loadGray(const fs::path& path) {
-  cv::Mat image = cv::imread(path.string(), cv::IMREAD_GRAYSCALE);
-  if (image.empty()) ADD_FAILURE() << "cannot read " << path;
-  return image;
-}
+using test::eurocFrame;
+using test::kittiFrame;
+using test::loadGray;
 
 const OrbExtractor& defaultExtractor() {
   static const OrbExtractor extractor{OrbSettings{}};

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 #include <opencv2/imgcodecs.hpp>
 
+#include "error_of.h"
 #include "lumaslam/core/error.h"
 #include "lumaslam/io/dataset_reader.h"
 #include "lumaslam/io/euroc_sensor_yaml.h"
@@ -25,16 +26,7 @@ const fs::path kTumDir = "tum/rgbd_dataset_freiburg1_xyz_textonly";
 const fs::path kEurocDir = "euroc/V1_01_easy_micro";
 const fs::path kKittiSequence = "kitti/odometry_07_first160/sequences/07";
 
-template <typename Action>
-std::string errorOf(Action&& action) {
-  try {
-    action();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  ADD_FAILURE() << "expected lumaslam::Error";
-  return {};
-}
+using test::errorOf;
 
 #define EXPECT_ERROR_CONTAINS(action, text)                                   \
   do {                                                                        \

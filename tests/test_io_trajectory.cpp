@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include "error_of.h"
 #include "lumaslam/core/error.h"
 #include "lumaslam/io/trajectory_io.h"
 #include "test_paths.h"
@@ -18,17 +19,7 @@ void writeText(const std::filesystem::path& file, const std::string& text) {
   std::ofstream(file) << text;
 }
 
-// The Error message of `action`, or a test failure if it does not throw Error.
-template <typename Action>
-std::string errorOf(Action&& action) {
-  try {
-    action();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  ADD_FAILURE() << "expected lumaslam::Error";
-  return {};
-}
+using test::errorOf;
 
 double pathLength(const Trajectory& trajectory) {
   double length = 0.0;
