@@ -5,7 +5,6 @@
 #include <future>
 
 #include <spdlog/spdlog.h>
-#include <opencv2/imgproc.hpp>
 
 #include "lumaslam/bow_relocalizer.h"
 #include "lumaslam/camera/stereo_rectifier.h"
