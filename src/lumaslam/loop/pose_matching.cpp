@@ -3,9 +3,7 @@
 #include <algorithm>
 #include <unordered_set>
 
-#include <opencv2/calib3d.hpp>
-#include <opencv2/core/eigen.hpp>
-
+#include "lumaslam/camera/pnp_ransac.h"
 #include "lumaslam/core/error.h"
 #include "lumaslam/feature/hamming.h"
 #include "lumaslam/feature/projection_matcher.h"
@@ -86,37 +84,20 @@ PointSlots searchByBow(const map::KeyFrame& keyframe, const FeatureVector& keyfr
 
 bool solvePnpRansac(const MatchingFrame& frame, const PnpRansacParams& params, PointSlots& slots,
                     SE3& T_c_w) {
-  std::vector<cv::Point3d> object;
-  std::vector<cv::Point2d> image;
+  std::vector<Eigen::Vector3d> X_w;
+  std::vector<cv::Point2f> uv;
   std::vector<std::size_t> feature_of;
   for (std::size_t i = 0; i < slots.size(); ++i) {
     if (!slots[i]) continue;
-    const Eigen::Vector3d X = slots[i]->position();
-    object.emplace_back(X.x(), X.y(), X.z());
-    image.emplace_back(frame.features->undistorted[i].x, frame.features->undistorted[i].y);
+    X_w.push_back(slots[i]->position());
+    uv.push_back(frame.features->undistorted[i]);
     feature_of.push_back(i);
   }
-  if (static_cast<int>(object.size()) < params.min_inliers) return false;
-  const auto& k = frame.intrinsics;
-  const cv::Matx33d K(k.fx, 0, k.cx, 0, k.fy, k.cy, 0, 0, 1);
-  cv::Mat rvec;
-  cv::Mat tvec;
-  std::vector<int> inliers;
-  const bool ok =
-      cv::solvePnPRansac(object, image, K, cv::noArray(), rvec, tvec, false, params.iterations,
-                         params.reprojection_px, 0.99, inliers, cv::SOLVEPNP_EPNP);
-  if (!ok || static_cast<int>(inliers.size()) < params.min_inliers) return false;
-  cv::Matx33d R;
-  cv::Rodrigues(rvec, R);
-  Eigen::Matrix3d R_e;
-  cv::cv2eigen(cv::Mat(R), R_e);
-  T_c_w = SE3::Identity();
-  T_c_w.linear() = R_e;
-  T_c_w.translation() = Eigen::Vector3d(tvec.at<double>(0), tvec.at<double>(1), tvec.at<double>(2));
-  std::vector<bool> is_inlier(feature_of.size(), false);
-  for (const int i : inliers) is_inlier[static_cast<std::size_t>(i)] = true;
+  const auto found = camera::solvePnpRansac(X_w, uv, frame.intrinsics, params);
+  if (!found) return false;
+  T_c_w = found->T_c_w;
   for (std::size_t m = 0; m < feature_of.size(); ++m) {
-    if (!is_inlier[m]) slots[feature_of[m]] = nullptr;
+    if (!found->is_inlier[m]) slots[feature_of[m]] = nullptr;
   }
   return true;
 }

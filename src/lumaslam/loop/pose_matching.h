@@ -8,6 +8,7 @@
 
 #include <opencv2/core.hpp>
 
+#include "lumaslam/camera/pnp_ransac.h"
 #include "lumaslam/core/pose.h"
 #include "lumaslam/feature/scale_levels.h"
 #include "lumaslam/loop/bow_vector.h"
@@ -38,11 +39,7 @@ PointSlots searchByBow(const map::KeyFrame& keyframe, const FeatureVector& keyfr
                        const map::FeatureSet& frame, const FeatureVector& frame_nodes, float ratio,
                        int max_distance);
 
-struct PnpRansacParams {
-  int iterations = 300;
-  float reprojection_px = 4.0F;
-  int min_inliers = 10;
-};
+using PnpRansacParams = camera::PnpRansacParams;
 
 // EPnP inside RANSAC on the matched points; only the inliers stay in `slots`.
 bool solvePnpRansac(const MatchingFrame& frame, const PnpRansacParams& params, PointSlots& slots,
