@@ -8,8 +8,10 @@
 
 #include <spdlog/spdlog.h>
 
+#include "lumaslam/camera/pnp_ransac.h"
 #include "lumaslam/feature/projection_matcher.h"
 #include "lumaslam/optimize/pose_only.h"
+#include "lumaslam/track/keyframe_descriptor_matching.h"
 
 namespace lumaslam::track {
 
@@ -48,16 +50,22 @@ TrackingOutcome Tracker::track(Frame frame) {
     outcome.new_keyframe = ok;
   } else {
     updateLastFrame();
+    inliers_ = 0;
     if (state_ == TrackingState::Ok) {
-      ok = ((velocity_ && trackWithMotionModel()) ||
+      // ORB-SLAM's order: motion model, then the reference keyframe by descriptors (no pose
+      // prior needed: the first frame after initialisation has no velocity, and a fast
+      // rotation leaves the predicted pose many pixels off), then the last pose's window.
+      ok = ((velocity_ && trackWithMotionModel()) || trackReferenceKeyFrame() ||
             (last_.T_c_w && trackFromPose(*last_.T_c_w, params_.motion_search_radius * 2.0F))) &&
            trackLocalMap();
     } else {
-      // Lost: look for the map around the last pose we had (short blackouts, fast motion),
-      // then anywhere in the map by place recognition (ORB-SLAM's Relocalization).
-      ok =
-          last_.T_c_w && trackFromPose(*last_.T_c_w, params_.lost_search_radius) && trackLocalMap();
+      // Lost: look for the map around the last pose we had (short blackouts), then anywhere
+      // in the map by place recognition (ORB-SLAM's Relocalization), then the last reference
+      // keyframe by descriptors (violent motion; what recovers without a vocabulary).
+      ok = last_.T_c_w && trackFromPose(*last_.T_c_w, params_.lost_search_radius) &&
+           trackLocalMap();
       if (!ok) outcome.relocalized = ok = relocalize() && trackLocalMap();
+      if (!ok) ok = trackReferenceKeyFrame() && trackLocalMap();
     }
     if (state_ != TrackingState::NotInitialized)
       state_ = ok ? TrackingState::Ok : TrackingState::Lost;
@@ -80,7 +88,14 @@ TrackingOutcome Tracker::track(Frame frame) {
     if (!current_.reference) current_.reference = reference_;
     recorder_.recordTracked(current_.timestamp, *current_.T_c_w, current_.reference);
     // The map's first frame has no local-map inliers yet: the next tracked frame sets them.
-    last_tracked_inliers_ = previous == TrackingState::NotInitialized ? 0 : inliers_;
+    if (previous == TrackingState::NotInitialized) {
+      recent_inliers_.clear();
+    } else {
+      recent_inliers_.push_back(inliers_);
+      if (recent_inliers_.size() > static_cast<std::size_t>(params_.inlier_reference_frames)) {
+        recent_inliers_.pop_front();
+      }
+    }
     last_tracked_frame_ = current_.index;
     last_T_l_r_ = *current_.T_c_w * current_.reference->T_w_c();
     outcome.T_w_c = current_.T_c_w->inverse();
@@ -341,6 +356,52 @@ bool Tracker::trackFromPose(const SE3& T_c_w_prior, float radius) {
   return discardOutliers() >= 10;
 }
 
+bool Tracker::trackReferenceKeyFrame() {
+  if (!reference_ || reference_->isBad()) return false;
+  current_.clearMatches();
+  current_.points = matchKeyFramePoints(*reference_, *current_.features, {});
+  const auto matches = std::count_if(current_.points.begin(), current_.points.end(),
+                                     [](const auto& point) { return point != nullptr; });
+  if (matches < 15) {
+    spdlog::debug("frame {}: {} descriptor matches with reference keyframe {}", current_.index,
+                  matches, reference_->id());
+    return false;
+  }
+  current_.T_c_w = last_.T_c_w ? *last_.T_c_w : reference_->T_c_w();
+  poseFromPriorOrPnp();
+  return discardOutliers() >= 10;
+}
+
+// Pose-only optimisation from the prior; when it keeps under half of the matches (the prior is
+// too far off for the robust cost to converge), EPnP + RANSAC on the matches, then again.
+void Tracker::poseFromPriorOrPnp() {
+  const SE3 prior = *current_.T_c_w;
+  const auto matched = current_.points;
+  const auto matches = static_cast<int>(std::count_if(
+      matched.begin(), matched.end(), [](const auto& point) { return point != nullptr; }));
+  if (2 * optimizeCurrentPose() >= matches) return;
+  std::vector<Eigen::Vector3d> X_w;
+  std::vector<cv::Point2f> uv;
+  std::vector<std::size_t> feature_of;
+  for (std::size_t i = 0; i < matched.size(); ++i) {
+    if (!matched[i]) continue;
+    X_w.push_back(matched[i]->position());
+    uv.push_back(current_.features->undistorted[i]);
+    feature_of.push_back(i);
+  }
+  const auto found = camera::solvePnpRansac(X_w, uv, camera_.intrinsics(), {});
+  if (!found) {
+    current_.T_c_w = prior;
+    return;
+  }
+  current_.clearMatches();
+  for (std::size_t m = 0; m < feature_of.size(); ++m) {
+    if (found->is_inlier[m]) current_.points[feature_of[m]] = matched[feature_of[m]];
+  }
+  current_.T_c_w = found->T_c_w;
+  optimizeCurrentPose();
+}
+
 bool Tracker::relocalize() {
   if (!relocalizer_ || current_.size() == 0) return false;
   auto found = relocalizer_->relocalize(current_);
@@ -472,17 +533,24 @@ bool Tracker::trackLocalMap() {
   return enoughInliers();
 }
 
+int Tracker::inlierReference() const {
+  if (recent_inliers_.empty()) return 0;
+  std::vector<int> sorted(recent_inliers_.begin(), recent_inliers_.end());
+  std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
+  return sorted[sorted.size() / 2];
+}
+
 bool Tracker::enoughInliers() const {
   if (inliers_ < params_.min_local_map_inliers) return false;
-  if (last_tracked_inliers_ == 0) return true;
+  const int recent = inlierReference();
+  if (recent == 0) return true;
   const double frames_since = current_.index > last_tracked_frame_
                                   ? static_cast<double>(current_.index - last_tracked_frame_)
                                   : 1.0;
-  const double reference =
-      last_tracked_inliers_ * std::exp2(-std::max(0.0, frames_since - 1.0) /
-                                        std::max(1, params_.inlier_reference_half_life));
+  const double reference = recent * std::exp2(-std::max(0.0, frames_since - 1.0) /
+                                              std::max(1, params_.inlier_reference_half_life));
   if (inliers_ >= params_.min_inlier_fraction_of_last * reference) return true;
-  spdlog::debug("frame {}: {} local-map inliers, under {:.2f} of the last tracked frame's {:.0f}",
+  spdlog::debug("frame {}: {} local-map inliers, under {:.2f} of the recent frames' {:.0f}",
                 current_.index, inliers_, params_.min_inlier_fraction_of_last, reference);
   return false;
 }
