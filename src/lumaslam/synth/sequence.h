@@ -76,6 +76,8 @@ class SequenceRenderer {
   // RGB-D: the depth frame's stamp, timestampNs plus the preset's per-frame stream offset.
   std::int64_t depthTimestampNs(int index) const;
   const DepthSensorModel& depthModel() const { return depth_model_; }
+  // Trajectory time (trajectory().pose, scene().at) of a frame timestamp.
+  double secondsFromStart(std::int64_t timestamp_ns) const;
   // cam0 pose at an absolute timestamp (seconds, same clock as the frames).
   SE3 poseAt(double timestamp) const;
   const FrameExposure& exposure(int index) const;
@@ -88,7 +90,6 @@ class SequenceRenderer {
   CameraFrame exposeCamera(int index, int camera, const RenderedView& view, const SE3& T_w_c,
                            const cv::Mat& radiance) const;
   cv::Mat sensorDepth(int index, const RenderedView& colour_view) const;
-  double secondsFromStart(std::int64_t timestamp_ns) const;
 
   Preset preset_;
   Rig rig_;
