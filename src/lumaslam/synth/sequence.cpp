@@ -183,8 +183,8 @@ CameraFrame SequenceRenderer::exposeCamera(int index, int camera, const Rendered
   return frame;
 }
 
-// The depth camera sees the scene at its own capture time, through the same kind of rolling
-// shutter (the Kinect v1's IR sensor reads out row by row too), and registers it to colour.
+// The depth camera sees the scene at its own capture time, through the same readout as colour
+// (assumed: the Kinect v1's IR camera is a CMOS sensor too), and is registered to colour.
 cv::Mat SequenceRenderer::sensorDepth(int index, const RenderedView& colour_view) const {
   const std::int64_t depth_ns = depthTimestampNs(index);
   const bool same_time = depth_ns == timestampNs(index);
