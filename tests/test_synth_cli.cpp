@@ -4,6 +4,8 @@
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
+#include <string>
+#include <vector>
 
 #include "test_paths.h"
 
@@ -76,4 +78,30 @@ TEST(SynthCli, PeopleImagesTextureTheWalkersFromABoxList) {
                 log),
             0);
   EXPECT_NE(readText(log).find("nobody"), std::string::npos) << readText(log);
+}
+
+TEST(SynthCli, SyncedDepthWritesDepthAtTheColourStamps) {
+  lumaslam::test::TempDir dir("synth_cli_synced");
+  const fs::path log = dir.path() / "log.txt";
+  const auto stamps = [](const fs::path& list) {
+    std::vector<std::string> out;
+    std::ifstream in(list);
+    for (std::string line; std::getline(in, line);)
+      if (!line.empty() && line[0] != '#') out.push_back(line.substr(0, line.find(' ')));
+    return out;
+  };
+  const fs::path jittered = dir.path() / "jittered", synced = dir.path() / "synced";
+  ASSERT_EQ(run("synth " + jittered.string() + " --preset handheld-rgbd --frames 3 --seed 2", log),
+            0)
+      << readText(log);
+  ASSERT_EQ(run("synth " + synced.string() +
+                    " --preset handheld-rgbd --frames 3 --seed 2 --synced-depth --global-shutter",
+                log),
+            0)
+      << readText(log);
+  EXPECT_EQ(stamps(jittered / "rgb.txt"), stamps(synced / "rgb.txt"));
+  EXPECT_NE(stamps(jittered / "depth.txt"), stamps(jittered / "rgb.txt"));
+  EXPECT_EQ(stamps(synced / "depth.txt"), stamps(synced / "rgb.txt"));
+  EXPECT_NE(readText(jittered / "rgb" / (stamps(jittered / "rgb.txt")[1] + ".png")),
+            readText(synced / "rgb" / (stamps(synced / "rgb.txt")[1] + ".png")));
 }

@@ -29,6 +29,8 @@ struct SynthCommandOptions {
   int dark_level = -1;
   bool no_blur = false;
   bool no_noise = false;
+  bool global_shutter = false;
+  bool synced_depth = false;
   bool list = false;
   std::vector<std::filesystem::path> textures;
   std::filesystem::path people;
@@ -82,6 +84,8 @@ int runSynth(const SynthCommandOptions& o) {
   if (o.dark_level >= 0) options.dark_level = o.dark_level;
   options.motion_blur = !o.no_blur;
   options.sensor_noise = !o.no_noise;
+  options.rolling_shutter = !o.global_shutter;
+  options.depth_misalignment = !o.synced_depth;
   options.texture_images = o.textures;
   if (!o.people.empty()) options.people = loadPeople(o.people);
   writeSequence(o.out, o.preset, o.frames, o.seed, options);
@@ -107,6 +111,11 @@ const bool registered = lumaslam::cli::registerCommand(
           ->check(CLI::Range(0, 5));
       cmd.add_flag("--no-blur", o->no_blur, "Disable motion blur");
       cmd.add_flag("--no-noise", o->no_noise, "Disable sensor noise");
+      cmd.add_flag("--global-shutter", o->global_shutter,
+                   "Render the preset's rolling-shutter cameras with a global shutter");
+      cmd.add_flag("--synced-depth", o->synced_depth,
+                   "Depth registered exactly to colour and captured at the colour stamp "
+                   "(no misregistration, no stream time offsets)");
       cmd.add_option("--texture", o->textures, "Image file(s) to use as posters in the scene");
       cmd.add_option("--people-images", o->people,
                      "Texture the walkers from person photos: an image, a folder of person "

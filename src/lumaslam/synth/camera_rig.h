@@ -25,6 +25,7 @@ struct Rig {
   double nominal_exposure_ms = 6.0;
   double max_exposure_ms = 30.0;  // auto-exposure limit (below the frame period)
   double max_gain = 4.0;          // analog gain limit of auto-exposure
+  double readout_ms = 0.0;        // rolling-shutter readout top to bottom, 0 = global shutter
 
   SE3 T_c0_c1() const {
     SE3 T = SE3::Identity();

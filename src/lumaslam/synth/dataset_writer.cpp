@@ -19,6 +19,7 @@ namespace {
 
 struct FrameRecord {
   std::int64_t timestamp_ns = 0;
+  std::int64_t depth_timestamp_ns = 0;  // TUM: depth.txt lists the depth camera's own stamps
   std::vector<ObjectBox> boxes;
 };
 
@@ -76,7 +77,8 @@ std::vector<FrameRecord> renderAll(const SequenceRenderer& sequence,
   tbb::parallel_for(0, sequence.frameCount(), [&](int i) {
     const Frame frame = sequence.render(i);
     writeFrame(frame);
-    records[static_cast<size_t>(i)] = {frame.timestamp_ns, frame.cam0.boxes};
+    records[static_cast<size_t>(i)] = {frame.timestamp_ns, frame.depth_timestamp_ns,
+                                       frame.cam0.boxes};
   });
   return records;
 }
@@ -99,7 +101,8 @@ void writeTum(const SequenceRenderer& sequence, const fs::path& out) {
   const auto records = renderAll(sequence, [&](const Frame& frame) {
     const std::string stamp = tumTimestamp(frame.timestamp_ns);
     writeImage(out / "rgb" / (stamp + ".png"), frame.cam0.image);
-    writeImage(out / "depth" / (stamp + ".png"), depthToPng(frame.sensor_depth));
+    writeImage(out / "depth" / (tumTimestamp(frame.depth_timestamp_ns) + ".png"),
+               depthToPng(frame.sensor_depth));
     writeImage(out / "mask" / (stamp + ".png"), frame.cam0.mask);
   });
   const std::string origin =
@@ -118,9 +121,10 @@ void writeTum(const SequenceRenderer& sequence, const fs::path& out) {
     gt.line("# timestamp tx ty tz qx qy qz qw");
     for (const auto& r : records) {
       const std::string stamp = tumTimestamp(r.timestamp_ns);
+      const std::string depth_stamp = tumTimestamp(r.depth_timestamp_ns);
       rgb.line("{} rgb/{}.png", stamp, stamp);
-      depth.line("{} depth/{}.png", stamp, stamp);
-      assoc.line("{} rgb/{}.png {} depth/{}.png", stamp, stamp, stamp, stamp);
+      depth.line("{} depth/{}.png", depth_stamp, depth_stamp);
+      assoc.line("{} rgb/{}.png {} depth/{}.png", stamp, stamp, depth_stamp, depth_stamp);
       const SE3 T = sequence.poseAt(static_cast<double>(r.timestamp_ns) * 1e-9);
       const Eigen::Quaterniond q = unitQuaternion(T);
       const Eigen::Vector3d p = T.translation();

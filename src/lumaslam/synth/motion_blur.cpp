@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -42,10 +43,22 @@ inline void storeBgr(cv::Vec3f& out, const cv::v_float32x4& value) {
 
 cv::Mat applyMotionBlur(const cv::Mat& radiance, const cv::Mat& depth, const PinholeCamera& cam,
                         const SE3& T_w_mid, const SE3& T_w_start, const SE3& T_w_end) {
+  return applyMotionBlur(radiance, depth, cam, RowPoses(T_w_mid), RowPoses(T_w_start),
+                         RowPoses(T_w_end));
+}
+
+cv::Mat applyMotionBlur(const cv::Mat& radiance, const cv::Mat& depth, const PinholeCamera& cam,
+                        const RowPoses& T_w_mid, const RowPoses& T_w_start,
+                        const RowPoses& T_w_end) {
   if (radiance.type() != CV_32FC3 || depth.type() != CV_32F || radiance.size() != depth.size())
     fail("applyMotionBlur: expected CV_32FC3 radiance and CV_32F depth of the same size");
-  const Eigen::Isometry3f T_start_mid = (T_w_start.inverse() * T_w_mid).cast<float>();
-  const Eigen::Isometry3f T_end_mid = (T_w_end.inverse() * T_w_mid).cast<float>();
+  const bool global = T_w_mid.global() && T_w_start.global() && T_w_end.global();
+  std::vector<Eigen::Isometry3f> start_mid(global ? 1 : static_cast<size_t>(radiance.rows));
+  std::vector<Eigen::Isometry3f> end_mid(start_mid.size());
+  for (int r = 0; r < static_cast<int>(start_mid.size()); ++r) {
+    start_mid[static_cast<size_t>(r)] = (T_w_start[r].inverse() * T_w_mid[r]).cast<float>();
+    end_mid[static_cast<size_t>(r)] = (T_w_end[r].inverse() * T_w_mid[r]).cast<float>();
+  }
   const float fx = static_cast<float>(cam.fx), fy = static_cast<float>(cam.fy);
   const float cx = static_cast<float>(cam.cx), cy = static_cast<float>(cam.cy);
   const cv::Mat source = withSpareRow(radiance);  // 4-float loads of the last pixel stay inside
@@ -53,6 +66,9 @@ cv::Mat applyMotionBlur(const cv::Mat& radiance, const cv::Mat& depth, const Pin
   tbb::parallel_for(
       tbb::blocked_range<int>(0, radiance.rows, 8), [&](const tbb::blocked_range<int>& rows) {
         for (int y = rows.begin(); y < rows.end(); ++y) {
+          const size_t pose_row = global ? 0 : static_cast<size_t>(y);
+          const Eigen::Isometry3f& T_start_mid = start_mid[pose_row];
+          const Eigen::Isometry3f& T_end_mid = end_mid[pose_row];
           const float* z = depth.ptr<float>(y);
           auto* o = out.ptr<cv::Vec3f>(y);
           for (int x = 0; x < radiance.cols; ++x) {

@@ -26,6 +26,19 @@ LightingSchedule darkLighting(int dark_level) {
   return l;
 }
 
+// A Kinect v1 as in TUM's fr1 sequences: every depth imperfection that matters for tracking.
+DepthSensorModel kinectV1Depth() {
+  DepthSensorModel d;
+  d.min_ir_albedo = 0.02f;
+  d.max_incidence_deg = 80.0f;
+  d.grazing_noise = true;
+  d.quantize_disparity = true;
+  d.registration_shift_px = {1.4f, 0.8f};
+  d.registration_scale = 1.003f;  // +-1 px more at the image corners
+  d.max_time_offset_ms = 15.0;
+  return d;
+}
+
 std::vector<Preset> buildPresets() {
   using enum SensorKind;
   using enum TrajectoryKind;
@@ -96,6 +109,16 @@ std::vector<Preset> buildPresets() {
            Rgbd, Xyz, 300);
   p.lighting.light_end = 0.02;
   p.lighting.dark_level = 1;
+  presets.push_back(p);
+
+  p = make("handheld-rgbd",
+           "hand-held Kinect v1 like TUM fr1 desk/room: fast sweeps and quick turns, blur at a "
+           "~17 ms exposure, 30 ms rolling shutter, depth misregistered by ~1.5 px, up to 15 ms "
+           "out of sync and with holes on dark and grazing surfaces",
+           Rgbd, Handheld, 300);
+  p.lighting.light_start = p.lighting.light_end = 0.35;  // auto-exposure: 6 ms / 0.35
+  p.readout_ms = 30.0;
+  p.depth = kinectV1Depth();
   presets.push_back(p);
 
   presets.push_back(

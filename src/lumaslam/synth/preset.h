@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "lumaslam/synth/camera_rig.h"
+#include "lumaslam/synth/depth_sensor.h"
 #include "lumaslam/synth/lighting.h"
 #include "lumaslam/synth/trajectory.h"
 
@@ -24,8 +25,14 @@ struct Preset {
   int moving_boxes = 0;
   bool spotlight = false;
   LightingSchedule lighting;
+  double readout_ms = 0.0;  // rolling shutter of every camera (see rolling_shutter.h), 0 = global
+  DepthSensorModel depth;   // RGB-D only
 
-  Rig rig() const { return sensor == SensorKind::Stereo ? eurocStereoRig() : tumRgbdRig(); }
+  Rig rig() const {
+    Rig r = sensor == SensorKind::Stereo ? eurocStereoRig() : tumRgbdRig();
+    r.readout_ms = readout_ms;
+    return r;
+  }
 };
 
 const std::vector<Preset>& allPresets();

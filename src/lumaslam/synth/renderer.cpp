@@ -114,152 +114,194 @@ float lightmapSample(const cv::Mat& map, float u, float v) {
          (r1[x0] + fx * (r1[x0 + 1] - r1[x0])) * fy;
 }
 
+// Everything the per-pixel loop needs of one camera pose: a global-shutter image has one,
+// a rolling-shutter image one per row.
+struct ViewSetup {
+  Eigen::Matrix3f R_w_c;
+  Eigen::Vector3f origin;
+  std::vector<ScreenRect> box_rects;
+  // Visible boxes nearest first, so a pixel stops testing once the boxes left start behind
+  // its hit (equal distances keep scene order: the same image whatever the sort does).
+  std::vector<int> box_order;
+  std::vector<ScreenRect> walker_rects;
+};
+
+ViewSetup setupView(const SceneSnapshot& snapshot, const PinholeCamera& cam, const SE3& T_w_c) {
+  ViewSetup view;
+  view.R_w_c = T_w_c.linear().cast<float>();
+  view.origin = T_w_c.translation().cast<float>();
+  const Eigen::Matrix3f R_c_w = view.R_w_c.transpose();
+  const Eigen::Vector3f t_c_w = -R_c_w * view.origin;
+  for (const auto& box : snapshot.boxes)
+    view.box_rects.push_back(projectBounds(corners(box), R_c_w, t_c_w, cam));
+  for (int i = 0; i < static_cast<int>(view.box_rects.size()); ++i)
+    if (!view.box_rects[static_cast<size_t>(i)].empty()) view.box_order.push_back(i);
+  std::stable_sort(view.box_order.begin(), view.box_order.end(), [&](int a, int b) {
+    return view.box_rects[static_cast<size_t>(a)].near_z <
+           view.box_rects[static_cast<size_t>(b)].near_z;
+  });
+  for (const auto& w : snapshot.walkers)
+    view.walker_rects.push_back(projectBounds(corners(w), R_c_w, t_c_w, cam));
+  return view;
+}
+
+// Per-row scratch lists: boxes whose projected bounds cover each 32-pixel block of the row,
+// and walkers whose bounds cover the row.
+constexpr int kBlock = 32;
+struct RowCandidates {
+  std::vector<std::vector<int>> boxes_in_block;
+  std::vector<int> walkers_in_row;
+  explicit RowCandidates(int width) : boxes_in_block((width + kBlock - 1) / kBlock) {}
+};
+
+void collectCandidates(const ViewSetup& setup, int y, RowCandidates& c) {
+  for (auto& block : c.boxes_in_block) block.clear();
+  c.walkers_in_row.clear();
+  for (const int i : setup.box_order) {
+    const ScreenRect& r = setup.box_rects[static_cast<size_t>(i)];
+    if (y < r.y0 || y > r.y1) continue;
+    for (int b = r.x0 / kBlock; b <= r.x1 / kBlock; ++b)
+      c.boxes_in_block[static_cast<size_t>(b)].push_back(i);
+  }
+  for (int i = 0; i < static_cast<int>(setup.walker_rects.size()); ++i)
+    if (y >= setup.walker_rects[static_cast<size_t>(i)].y0 &&
+        y <= setup.walker_rects[static_cast<size_t>(i)].y1)
+      c.walkers_in_row.push_back(i);
+}
+
+void renderRow(const Scene& scene, const SceneSnapshot& snapshot, const PinholeCamera& cam,
+               const ViewSetup& setup, int y, RowCandidates& candidates, RenderedView& view) {
+  collectCandidates(setup, y, candidates);
+  const Eigen::Matrix3f& R_w_c = setup.R_w_c;
+  const Eigen::Vector3f& origin = setup.origin;
+  const float fx = static_cast<float>(cam.fx), fy = static_cast<float>(cam.fy);
+  const float cx = static_cast<float>(cam.cx), cy = static_cast<float>(cam.cy);
+  auto* radiance = view.radiance.ptr<cv::Vec3f>(y);
+  auto* depth = view.depth.ptr<float>(y);
+  auto* ids = view.object_ids.ptr<std::uint8_t>(y);
+  auto* ir_albedo = view.ir_albedo.ptr<float>(y);
+  auto* incidence = view.incidence_cos.ptr<float>(y);
+  const Eigen::Vector3f row_dir = R_w_c.col(1) * ((static_cast<float>(y) - cy) / fy) + R_w_c.col(2);
+  for (int x = 0; x < cam.width; ++x) {
+    // Ray with unit camera-z component, so the hit parameter t is the z-depth.
+    const Eigen::Vector3f d = row_dir + R_w_c.col(0) * ((static_cast<float>(x) - cx) / fx);
+    const Eigen::Vector3f inv(1.0f / d.x(), 1.0f / d.y(), 1.0f / d.z());
+    Hit hit;
+    {  // the room, from inside: nearest exit plane
+      const BoxInstance& room = snapshot.room;
+      for (int a = 0; a < 3; ++a) {
+        const float plane = d[a] > 0.0f ? room.hi[a] : room.lo[a];
+        const float t = (plane - origin[a]) * inv[a];
+        if (t > 0.0f && t < hit.t) hit = {t, 0, 0, a * 2 + (d[a] > 0.0f ? 1 : 0)};
+      }
+    }
+    for (const int i : candidates.boxes_in_block[static_cast<size_t>(x / kBlock)]) {
+      const ScreenRect& r = setup.box_rects[static_cast<size_t>(i)];
+      if (r.near_z >= hit.t) break;  // this and every later box lie behind the hit
+      if (x < r.x0 || x > r.x1) continue;
+      const BoxInstance& box = snapshot.boxes[static_cast<size_t>(i)];
+      float t_near = 0.0f, t_far = hit.t;
+      int near_axis = -1;
+      bool miss = false;
+      for (int a = 0; a < 3 && !miss; ++a) {
+        float t0 = (box.lo[a] - origin[a]) * inv[a];
+        float t1 = (box.hi[a] - origin[a]) * inv[a];
+        if (t0 > t1) std::swap(t0, t1);
+        if (t0 > t_near) t_near = t0, near_axis = a;
+        t_far = std::min(t_far, t1);
+        miss = t_near > t_far;
+      }
+      if (miss || near_axis < 0 || t_near >= hit.t) continue;
+      hit = {t_near, 1, i, near_axis * 2 + (d[near_axis] > 0.0f ? 0 : 1)};
+    }
+    WalkerTexel walker_texel;
+    for (const int i : candidates.walkers_in_row) {
+      const ScreenRect& r = setup.walker_rects[static_cast<size_t>(i)];
+      if (x < r.x0 || x > r.x1) continue;
+      const WalkerInstance& w = snapshot.walkers[static_cast<size_t>(i)];
+      const float denom = d.dot(w.normal);
+      if (std::abs(denom) < 1e-6f) continue;
+      const float t = (w.base - origin).dot(w.normal) / denom;
+      if (t <= 0.0f || t >= hit.t) continue;
+      const Eigen::Vector3f p = origin + t * d - w.base;
+      const float u = p.dot(w.right), v = p.z();
+      if (!scene.walkerCovers(w, u, v, walker_texel)) continue;
+      hit = {t, 2, i, 0};
+    }
+
+    const Eigen::Vector3f p = origin + hit.t * d;
+    const float ray_length = d.norm();
+    const float pixel_size = hit.t * ray_length * ray_length / fx;  // on a fronto-parallel plane
+    cv::Vec3f albedo;
+    Eigen::Vector3f normal;
+    std::uint8_t id = 0;
+    float light = -1.0f;  // baked light if the face has a lightmap
+    float view_cosine = 1.0f;
+    if (hit.kind == 2) {
+      const WalkerInstance& w = snapshot.walkers[static_cast<size_t>(hit.index)];
+      view_cosine = std::abs(d.dot(w.normal)) / ray_length;
+      const float cosine = std::max(0.2f, view_cosine);
+      albedo = scene.texture(w.texture).sample(walker_texel.u, walker_texel.v,
+                                               pixel_size / std::sqrt(cosine));
+      normal = w.normal;
+      id = w.object_id;
+    } else {
+      const BoxInstance& box =
+          hit.kind == 0 ? snapshot.room : snapshot.boxes[static_cast<size_t>(hit.index)];
+      const int axis = hit.face / 2;
+      normal = Eigen::Vector3f::Zero();
+      // Room faces point into the room, box faces out of the box.
+      normal[axis] = (hit.face % 2 == 1) == (hit.kind == 0) ? -1.0f : 1.0f;
+      float u = 0.0f, v = 0.0f;
+      faceUv(box, hit.face, p, u, v);
+      // Geometric mean of the footprint's two axes: little blur, little aliasing.
+      view_cosine = std::abs(d[axis]) / ray_length;
+      const float cosine = std::max(0.05f, view_cosine);
+      albedo = scene.texture(box.textures[static_cast<size_t>(hit.face)])
+                   .sample(u, v, pixel_size / std::sqrt(cosine));
+      id = box.object_id;
+      const int lightmap = box.lightmaps[static_cast<size_t>(hit.face)];
+      if (lightmap >= 0) light = lightmapSample(scene.lightmap(lightmap), u, v);
+    }
+    if (light < 0.0f) light = staticLighting(snapshot.lights, snapshot.ambient, p, normal);
+    if (snapshot.spot) light += spotLighting(*snapshot.spot, p, normal);
+    // Textures are display-encoded (gamma ~2): square to linear reflectance.
+    const cv::Vec3f reflectance(albedo[0] * albedo[0], albedo[1] * albedo[1],
+                                albedo[2] * albedo[2]);
+    radiance[x] = reflectance * light;
+    depth[x] = hit.t;
+    ids[x] = id;
+    ir_albedo[x] = (reflectance[0] + reflectance[1] + reflectance[2]) * (1.0f / 3.0f);
+    incidence[x] = view_cosine;
+  }
+}
+
 }  // namespace
 
 RenderedView renderView(const Scene& scene, const SceneSnapshot& snapshot, const PinholeCamera& cam,
                         const SE3& T_w_c) {
+  return renderView(scene, snapshot, cam, RowPoses(T_w_c));
+}
+
+RenderedView renderView(const Scene& scene, const SceneSnapshot& snapshot, const PinholeCamera& cam,
+                        const RowPoses& row_poses) {
   RenderedView view;
   view.radiance.create(cam.height, cam.width, CV_32FC3);
   view.depth.create(cam.height, cam.width, CV_32F);
   view.object_ids.create(cam.height, cam.width, CV_8U);
+  view.ir_albedo.create(cam.height, cam.width, CV_32F);
+  view.incidence_cos.create(cam.height, cam.width, CV_32F);
 
-  const Eigen::Matrix3f R_w_c = T_w_c.linear().cast<float>();
-  const Eigen::Vector3f origin = T_w_c.translation().cast<float>();
-  const Eigen::Matrix3f R_c_w = R_w_c.transpose();
-  const Eigen::Vector3f t_c_w = -R_c_w * origin;
-
-  std::vector<ScreenRect> box_rects;
-  for (const auto& box : snapshot.boxes)
-    box_rects.push_back(projectBounds(corners(box), R_c_w, t_c_w, cam));
-  // Visible boxes nearest first, so a pixel stops testing once the boxes left start behind
-  // its hit (equal distances keep scene order: the same image whatever the sort does).
-  std::vector<int> box_order;
-  for (int i = 0; i < static_cast<int>(box_rects.size()); ++i)
-    if (!box_rects[static_cast<size_t>(i)].empty()) box_order.push_back(i);
-  std::stable_sort(box_order.begin(), box_order.end(), [&](int a, int b) {
-    return box_rects[static_cast<size_t>(a)].near_z < box_rects[static_cast<size_t>(b)].near_z;
+  std::vector<ViewSetup> setups(row_poses.global() ? 1 : static_cast<size_t>(cam.height));
+  tbb::parallel_for(0, static_cast<int>(setups.size()), [&](int i) {
+    setups[static_cast<size_t>(i)] = setupView(snapshot, cam, row_poses[i]);
   });
-  std::vector<ScreenRect> walker_rects;
-  for (const auto& w : snapshot.walkers)
-    walker_rects.push_back(projectBounds(corners(w), R_c_w, t_c_w, cam));
-
-  const float fx = static_cast<float>(cam.fx), fy = static_cast<float>(cam.fy);
-  const float cx = static_cast<float>(cam.cx), cy = static_cast<float>(cam.cy);
-
   tbb::parallel_for(
       tbb::blocked_range<int>(0, cam.height, 8), [&](const tbb::blocked_range<int>& rows) {
-        // Boxes whose projected bounds cover each 32-pixel block of the current row.
-        constexpr int kBlock = 32;
-        std::vector<std::vector<int>> boxes_in_block((cam.width + kBlock - 1) / kBlock);
-        std::vector<int> walkers_in_row;
-        for (int y = rows.begin(); y < rows.end(); ++y) {
-          for (auto& block : boxes_in_block) block.clear();
-          walkers_in_row.clear();
-          for (const int i : box_order) {
-            const ScreenRect& r = box_rects[static_cast<size_t>(i)];
-            if (y < r.y0 || y > r.y1) continue;
-            for (int b = r.x0 / kBlock; b <= r.x1 / kBlock; ++b)
-              boxes_in_block[static_cast<size_t>(b)].push_back(i);
-          }
-          for (int i = 0; i < static_cast<int>(walker_rects.size()); ++i)
-            if (y >= walker_rects[static_cast<size_t>(i)].y0 &&
-                y <= walker_rects[static_cast<size_t>(i)].y1)
-              walkers_in_row.push_back(i);
-
-          auto* radiance = view.radiance.ptr<cv::Vec3f>(y);
-          auto* depth = view.depth.ptr<float>(y);
-          auto* ids = view.object_ids.ptr<std::uint8_t>(y);
-          const Eigen::Vector3f row_dir =
-              R_w_c.col(1) * ((static_cast<float>(y) - cy) / fy) + R_w_c.col(2);
-          for (int x = 0; x < cam.width; ++x) {
-            // Ray with unit camera-z component, so the hit parameter t is the z-depth.
-            const Eigen::Vector3f d = row_dir + R_w_c.col(0) * ((static_cast<float>(x) - cx) / fx);
-            const Eigen::Vector3f inv(1.0f / d.x(), 1.0f / d.y(), 1.0f / d.z());
-            Hit hit;
-            {  // the room, from inside: nearest exit plane
-              const BoxInstance& room = snapshot.room;
-              for (int a = 0; a < 3; ++a) {
-                const float plane = d[a] > 0.0f ? room.hi[a] : room.lo[a];
-                const float t = (plane - origin[a]) * inv[a];
-                if (t > 0.0f && t < hit.t) hit = {t, 0, 0, a * 2 + (d[a] > 0.0f ? 1 : 0)};
-              }
-            }
-            for (const int i : boxes_in_block[static_cast<size_t>(x / kBlock)]) {
-              const ScreenRect& r = box_rects[static_cast<size_t>(i)];
-              if (r.near_z >= hit.t) break;  // this and every later box lie behind the hit
-              if (x < r.x0 || x > r.x1) continue;
-              const BoxInstance& box = snapshot.boxes[static_cast<size_t>(i)];
-              float t_near = 0.0f, t_far = hit.t;
-              int near_axis = -1;
-              bool miss = false;
-              for (int a = 0; a < 3 && !miss; ++a) {
-                float t0 = (box.lo[a] - origin[a]) * inv[a];
-                float t1 = (box.hi[a] - origin[a]) * inv[a];
-                if (t0 > t1) std::swap(t0, t1);
-                if (t0 > t_near) t_near = t0, near_axis = a;
-                t_far = std::min(t_far, t1);
-                miss = t_near > t_far;
-              }
-              if (miss || near_axis < 0 || t_near >= hit.t) continue;
-              hit = {t_near, 1, i, near_axis * 2 + (d[near_axis] > 0.0f ? 0 : 1)};
-            }
-            WalkerTexel walker_texel;
-            for (const int i : walkers_in_row) {
-              const ScreenRect& r = walker_rects[static_cast<size_t>(i)];
-              if (x < r.x0 || x > r.x1) continue;
-              const WalkerInstance& w = snapshot.walkers[static_cast<size_t>(i)];
-              const float denom = d.dot(w.normal);
-              if (std::abs(denom) < 1e-6f) continue;
-              const float t = (w.base - origin).dot(w.normal) / denom;
-              if (t <= 0.0f || t >= hit.t) continue;
-              const Eigen::Vector3f p = origin + t * d - w.base;
-              const float u = p.dot(w.right), v = p.z();
-              if (!scene.walkerCovers(w, u, v, walker_texel)) continue;
-              hit = {t, 2, i, 0};
-            }
-
-            const Eigen::Vector3f p = origin + hit.t * d;
-            const float ray_length = d.norm();
-            const float pixel_size =
-                hit.t * ray_length * ray_length / fx;  // on a fronto-parallel plane
-            cv::Vec3f albedo;
-            Eigen::Vector3f normal;
-            std::uint8_t id = 0;
-            float light = -1.0f;  // baked light if the face has a lightmap
-            if (hit.kind == 2) {
-              const WalkerInstance& w = snapshot.walkers[static_cast<size_t>(hit.index)];
-              const float cosine = std::max(0.2f, std::abs(d.dot(w.normal)) / ray_length);
-              albedo = scene.texture(w.texture).sample(walker_texel.u, walker_texel.v,
-                                                       pixel_size / std::sqrt(cosine));
-              normal = w.normal;
-              id = w.object_id;
-            } else {
-              const BoxInstance& box =
-                  hit.kind == 0 ? snapshot.room : snapshot.boxes[static_cast<size_t>(hit.index)];
-              const int axis = hit.face / 2;
-              normal = Eigen::Vector3f::Zero();
-              // Room faces point into the room, box faces out of the box.
-              normal[axis] = (hit.face % 2 == 1) == (hit.kind == 0) ? -1.0f : 1.0f;
-              float u = 0.0f, v = 0.0f;
-              faceUv(box, hit.face, p, u, v);
-              // Geometric mean of the footprint's two axes: little blur, little aliasing.
-              const float cosine = std::max(0.05f, std::abs(d[axis]) / ray_length);
-              albedo = scene.texture(box.textures[static_cast<size_t>(hit.face)])
-                           .sample(u, v, pixel_size / std::sqrt(cosine));
-              id = box.object_id;
-              const int lightmap = box.lightmaps[static_cast<size_t>(hit.face)];
-              if (lightmap >= 0) light = lightmapSample(scene.lightmap(lightmap), u, v);
-            }
-            if (light < 0.0f) light = staticLighting(snapshot.lights, snapshot.ambient, p, normal);
-            if (snapshot.spot) light += spotLighting(*snapshot.spot, p, normal);
-            // Textures are display-encoded (gamma ~2): square to linear reflectance.
-            radiance[x] =
-                cv::Vec3f(albedo[0] * albedo[0], albedo[1] * albedo[1], albedo[2] * albedo[2]) *
-                light;
-            depth[x] = hit.t;
-            ids[x] = id;
-          }
-        }
+        RowCandidates candidates(cam.width);
+        for (int y = rows.begin(); y < rows.end(); ++y)
+          renderRow(scene, snapshot, cam, setups[row_poses.global() ? 0 : static_cast<size_t>(y)],
+                    y, candidates, view);
       });
   return view;
 }

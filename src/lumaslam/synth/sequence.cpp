@@ -8,7 +8,6 @@
 #include "lumaslam/core/error.h"
 #include "lumaslam/synth/motion_blur.h"
 #include "lumaslam/synth/random.h"
-#include "lumaslam/synth/renderer.h"
 
 namespace lumaslam::synth {
 
@@ -48,6 +47,28 @@ LightingSchedule effectiveLighting(const Preset& preset, const SynthOptions& opt
   return lighting;
 }
 
+// The preset's depth sensor with the options' switches applied.
+DepthSensorModel effectiveDepthModel(const Preset& preset, const SynthOptions& options) {
+  DepthSensorModel model = preset.depth;
+  if (!options.depth_noise) {
+    model.noise = false;
+    model.edge_hole_probability = 0.0f;
+    model.dropout_blobs_per_megapixel = 0.0f;
+    model.min_ir_albedo = 0.0f;
+    model.max_incidence_deg = 90.0f;
+    model.quantize_disparity = false;
+  }
+  if (!options.depth_misalignment) {
+    model.registration_shift_px = {0.0f, 0.0f};
+    model.registration_scale = 1.0f;
+    model.max_time_offset_ms = 0.0;
+  }
+  if (!(model.max_time_offset_ms >= 0.0 && model.max_time_offset_ms <= 15.0))
+    fail("synth preset '{}': depth time offset {} ms is outside 0..15 ms", preset.name,
+         model.max_time_offset_ms);
+  return model;
+}
+
 }  // namespace
 
 SequenceRenderer::SequenceRenderer(const Preset& preset, int frames, std::uint64_t seed,
@@ -63,9 +84,14 @@ SequenceRenderer::SequenceRenderer(const Preset& preset, int frames, std::uint64
           static_cast<std::int64_t>(hashKey(seed, 0x71e) % 100000) * 1000000000LL),
       trajectory_(preset.trajectory, std::max(frames, 1) / preset.rig().fps, seed,
                   preset.motion_speed),
-      scene_(buildScene(preset, options, trajectory_, seed)) {
+      scene_(buildScene(preset, options, trajectory_, seed)),
+      depth_model_(effectiveDepthModel(preset, options)) {
   if (frames < 1)
     fail("synth preset '{}': frame count must be at least 1, got {}", preset.name, frames);
+  if (!options.rolling_shutter) rig_.readout_ms = 0.0;
+  if (!(rig_.readout_ms >= 0.0 && rig_.readout_ms <= 1000.0 / rig_.fps))
+    fail("synth preset '{}': rolling-shutter readout {} ms is outside 0..{:.1f} ms (one frame)",
+         preset.name, rig_.readout_ms, 1000.0 / rig_.fps);
   preset_.lighting = effectiveLighting(preset, options);
   exposures_ = planExposures(preset_.lighting, rig_, frames);
 }
@@ -81,6 +107,18 @@ std::int64_t SequenceRenderer::timestampNs(int index) const {
   return start_ns_ + us * 1000;
 }
 
+std::int64_t SequenceRenderer::depthTimestampNs(int index) const {
+  if (depth_model_.max_time_offset_ms <= 0.0) return timestampNs(index);
+  const double u = unitFromBits(hashKey(seed_, 0xd7e1, static_cast<std::uint64_t>(index)));
+  const std::int64_t offset_us =
+      std::llround((2.0 * u - 1.0) * depth_model_.max_time_offset_ms * 1000.0);
+  return timestampNs(index) + offset_us * 1000;  // whole microseconds, like TUM's stamps
+}
+
+double SequenceRenderer::secondsFromStart(std::int64_t timestamp_ns) const {
+  return static_cast<double>(timestamp_ns - start_ns_) * 1e-9;
+}
+
 SE3 SequenceRenderer::poseAt(double timestamp) const {
   return trajectory_.pose(timestamp - static_cast<double>(start_ns_) * 1e-9);
 }
@@ -91,20 +129,29 @@ const FrameExposure& SequenceRenderer::exposure(int index) const {
   return exposures_[static_cast<size_t>(index)];
 }
 
-CameraFrame SequenceRenderer::renderCamera(int index, int camera, double t, const SE3& T_w_c,
-                                           const SE3& T_w_rig) const {
-  const FrameExposure& exposure = exposures_[static_cast<size_t>(index)];
-  const SceneSnapshot snapshot = scene_.at(t, T_w_rig.translation());
-  RenderedView view = renderView(scene_, snapshot, rig_.camera, T_w_c);
+RowPoses SequenceRenderer::rowPosesAt(double t, const SE3& T_c0_c) const {
+  return rowPoses([&](double s) { return trajectory_.pose(s) * T_c0_c; }, t, rig_.readout_ms * 1e-3,
+                  rig_.camera.height);
+}
 
-  cv::Mat radiance = view.radiance;
+RenderedView SequenceRenderer::renderAt(double t, const SE3& T_c0_c) const {
+  const SceneSnapshot snapshot = scene_.at(t, trajectory_.pose(t).translation());
+  return renderView(scene_, snapshot, rig_.camera, rowPosesAt(t, T_c0_c));
+}
+
+cv::Mat SequenceRenderer::blurred(const RenderedView& view, int index, double t,
+                                  const SE3& T_c0_c) const {
+  const FrameExposure& exposure = exposures_[static_cast<size_t>(index)];
   const double exposure_s = exposure.exposure_ms * exposure.jump * 1e-3;
-  if (preset_.lighting.motion_blur && exposure_s > 1e-4) {
-    const SE3 T_c0_c = T_w_rig.inverse() * T_w_c;
-    radiance = applyMotionBlur(radiance, view.depth, rig_.camera, T_w_c,
-                               trajectory_.pose(t - exposure_s / 2) * T_c0_c,
-                               trajectory_.pose(t + exposure_s / 2) * T_c0_c);
-  }
+  if (!preset_.lighting.motion_blur || exposure_s <= 1e-4) return view.radiance;
+  return applyMotionBlur(view.radiance, view.depth, rig_.camera, rowPosesAt(t, T_c0_c),
+                         rowPosesAt(t - exposure_s / 2, T_c0_c),
+                         rowPosesAt(t + exposure_s / 2, T_c0_c));
+}
+
+CameraFrame SequenceRenderer::exposeCamera(int index, int camera, const RenderedView& view,
+                                           const SE3& T_w_c, const cv::Mat& radiance) const {
+  const FrameExposure& exposure = exposures_[static_cast<size_t>(index)];
   SensorModel sensor;
   sensor.noise_scale = preset_.lighting.noise_scale;
   CameraFrame frame;
@@ -136,26 +183,36 @@ CameraFrame SequenceRenderer::renderCamera(int index, int camera, double t, cons
   return frame;
 }
 
+// The depth camera sees the scene at its own capture time, through the same readout as colour
+// (assumed: the Kinect v1's IR camera is a CMOS sensor too), and is registered to colour.
+cv::Mat SequenceRenderer::sensorDepth(int index, const RenderedView& colour_view) const {
+  const std::int64_t depth_ns = depthTimestampNs(index);
+  const bool same_time = depth_ns == timestampNs(index);
+  const RenderedView depth_view =
+      same_time ? RenderedView{} : renderAt(secondsFromStart(depth_ns), SE3::Identity());
+  const RenderedView& seen = same_time ? colour_view : depth_view;
+  return simulateDepthSensor(DepthSensorInput{seen.depth, seen.ir_albedo, seen.incidence_cos},
+                             depth_model_,
+                             hashKey(seed_, 0xde97, static_cast<std::uint64_t>(index)));
+}
+
 Frame SequenceRenderer::render(int index) const {
   exposure(index);  // range check
   Frame frame;
   frame.index = index;
   frame.timestamp_ns = timestampNs(index);
+  frame.depth_timestamp_ns = depthTimestampNs(index);
   frame.exposure = exposures_[static_cast<size_t>(index)];
-  const double t = static_cast<double>(frame.timestamp_ns - start_ns_) * 1e-9;
+  const double t = secondsFromStart(frame.timestamp_ns);
   const SE3 T_w_c0 = trajectory_.pose(t);
-  frame.cam0 = renderCamera(index, 0, t, T_w_c0, T_w_c0);
+  const RenderedView view0 = renderAt(t, SE3::Identity());
+  frame.cam0 = exposeCamera(index, 0, view0, T_w_c0, blurred(view0, index, t, SE3::Identity()));
   if (rig_.kind == SensorKind::Stereo) {
-    frame.cam1 = renderCamera(index, 1, t, T_w_c0 * rig_.T_c0_c1(), T_w_c0);
+    const RenderedView view1 = renderAt(t, rig_.T_c0_c1());
+    frame.cam1 = exposeCamera(index, 1, view1, T_w_c0 * rig_.T_c0_c1(),
+                              blurred(view1, index, t, rig_.T_c0_c1()));
   } else {
-    DepthSensorModel model;
-    model.noise = options_.depth_noise;
-    if (!options_.depth_noise) {
-      model.edge_hole_probability = 0.0f;
-      model.dropout_blobs_per_megapixel = 0.0f;
-    }
-    frame.sensor_depth = simulateDepthSensor(
-        frame.cam0.depth, model, hashKey(seed_, 0xde97, static_cast<std::uint64_t>(index)));
+    frame.sensor_depth = sensorDepth(index, view0);
   }
   return frame;
 }

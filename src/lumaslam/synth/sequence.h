@@ -13,6 +13,8 @@
 #include "lumaslam/synth/depth_sensor.h"
 #include "lumaslam/synth/lighting.h"
 #include "lumaslam/synth/preset.h"
+#include "lumaslam/synth/renderer.h"
+#include "lumaslam/synth/rolling_shutter.h"
 #include "lumaslam/synth/scene.h"
 #include "lumaslam/synth/trajectory.h"
 
@@ -25,7 +27,9 @@ struct SynthOptions {
   std::optional<int> dark_level;
   bool motion_blur = true;
   bool sensor_noise = true;
-  bool depth_noise = true;                            // Kinect-like noise and holes in sensor_depth
+  bool depth_noise = true;         // Kinect-like noise and holes in sensor_depth
+  bool rolling_shutter = true;     // the preset's rolling shutter (false: global shutter)
+  bool depth_misalignment = true;  // the preset's depth/colour misregistration and time offsets
   std::vector<std::filesystem::path> texture_images;  // posters (throws if one is unreadable)
   std::vector<PersonImage> people;  // walker photos (see SceneOptions::people); empty = procedural
 };
@@ -46,8 +50,9 @@ struct CameraFrame {
 
 struct Frame {
   int index = 0;
-  std::int64_t timestamp_ns = 0;
+  std::int64_t timestamp_ns = 0;  // colour (cam0) stamp; with a rolling shutter, of its middle rows
   double timestamp() const { return static_cast<double>(timestamp_ns) * 1e-9; }
+  std::int64_t depth_timestamp_ns = 0;  // RGB-D: when sensor_depth was captured
   FrameExposure exposure;
   CameraFrame cam0;                 // rgb (RGB-D) or left (stereo)
   std::optional<CameraFrame> cam1;  // right (stereo)
@@ -68,13 +73,23 @@ class SequenceRenderer {
   int frameCount() const { return frames_; }
   std::uint64_t seed() const { return seed_; }
   std::int64_t timestampNs(int index) const;
+  // RGB-D: the depth frame's stamp, timestampNs plus the preset's per-frame stream offset.
+  std::int64_t depthTimestampNs(int index) const;
+  const DepthSensorModel& depthModel() const { return depth_model_; }
+  // Trajectory time (trajectory().pose, scene().at) of a frame timestamp.
+  double secondsFromStart(std::int64_t timestamp_ns) const;
   // cam0 pose at an absolute timestamp (seconds, same clock as the frames).
   SE3 poseAt(double timestamp) const;
   const FrameExposure& exposure(int index) const;
 
  private:
-  CameraFrame renderCamera(int index, int camera, double t, const SE3& T_w_c,
-                           const SE3& T_w_rig) const;
+  // Poses of the rows of camera c (T_c0_c in the rig) for a frame at t (seconds from start).
+  RowPoses rowPosesAt(double t, const SE3& T_c0_c) const;
+  RenderedView renderAt(double t, const SE3& T_c0_c) const;
+  cv::Mat blurred(const RenderedView& view, int index, double t, const SE3& T_c0_c) const;
+  CameraFrame exposeCamera(int index, int camera, const RenderedView& view, const SE3& T_w_c,
+                           const cv::Mat& radiance) const;
+  cv::Mat sensorDepth(int index, const RenderedView& colour_view) const;
 
   Preset preset_;
   Rig rig_;
@@ -85,6 +100,7 @@ class SequenceRenderer {
   CameraTrajectory trajectory_;
   Scene scene_;
   std::vector<FrameExposure> exposures_;
+  DepthSensorModel depth_model_;
 };
 
 // Convenience: render `frames` frames of the named preset and write the dataset to `out`

@@ -1,5 +1,6 @@
 #include "lumaslam/synth/trajectory.h"
 
+#include <array>
 #include <cmath>
 
 #include <Eigen/Geometry>
@@ -47,7 +48,9 @@ TrajectoryKind trajectoryKindFromName(std::string_view name) {
   if (name == "rpy") return TrajectoryKind::Rpy;
   if (name == "halfsphere") return TrajectoryKind::Halfsphere;
   if (name == "loop") return TrajectoryKind::Loop;
-  fail("trajectory '{}' is unknown (expected static, xyz, rpy, halfsphere or loop)", name);
+  if (name == "handheld") return TrajectoryKind::Handheld;
+  fail("trajectory '{}' is unknown (expected static, xyz, rpy, halfsphere, loop or handheld)",
+       name);
 }
 
 std::string trajectoryKindName(TrajectoryKind kind) {
@@ -62,6 +65,8 @@ std::string trajectoryKindName(TrajectoryKind kind) {
       return "halfsphere";
     case TrajectoryKind::Loop:
       return "loop";
+    case TrajectoryKind::Handheld:
+      return "handheld";
   }
   return "?";
 }
@@ -88,6 +93,33 @@ CameraTrajectory::CameraTrajectory(TrajectoryKind kind, double duration_s, std::
   angle_tremor_ = {randomVector(0.03, 0.08) * kDeg * scale, randomVector(10.0, 25.0),
                    randomVector(0, 2 * kPi)};
   phases_ = randomVector(0, 2 * kPi);
+  if (kind == TrajectoryKind::Handheld) turns_ = planTurns(duration_s * speed, seed);
+}
+
+double CameraTrajectory::Turn::at(double t) const {
+  if (t <= start) return 0.0;
+  if (t >= start + duration) return angle;
+  const double s = (t - start) / duration;
+  return angle * (s - std::sin(2.0 * kPi * s) / (2.0 * kPi));
+}
+
+std::vector<CameraTrajectory::Turn> CameraTrajectory::planTurns(double duration_s,
+                                                                std::uint64_t seed) {
+  // Alternating directions per axis, so the view swings back instead of drifting away.
+  Rng rng(seed, 0x7e4c);
+  std::vector<Turn> turns;
+  std::array<double, 2> sign{1.0, 1.0};
+  for (double t = rng.uniform(1.2, 2.0); t < duration_s; t += rng.uniform(1.8, 3.2)) {
+    Turn turn;
+    turn.start = t;
+    turn.duration = rng.uniform(0.15, 0.2);
+    turn.axis = rng.chance(0.65) ? 0 : 1;
+    const double magnitude = (turn.axis == 0 ? rng.uniform(12.0, 16.0) : rng.uniform(8.0, 11.0));
+    turn.angle = sign[static_cast<size_t>(turn.axis)] * magnitude * kDeg;
+    sign[static_cast<size_t>(turn.axis)] *= -1.0;
+    turns.push_back(turn);
+  }
+  return turns;
 }
 
 Eigen::Vector3d CameraTrajectory::viewOrigin() const {
@@ -159,6 +191,22 @@ SE3 CameraTrajectory::pose(double real_t) const {
       pitch = -10.0 * kDeg +
               4.0 * kDeg * std::sin(3.0 * s);  // slightly down: floor and furniture in view
       roll = 3.0 * kDeg * std::sin(2.0 * s);
+      break;
+    }
+    case TrajectoryKind::Handheld: {
+      // Sweeps over the desk-like scene in front (TUM fr1 desk: 0.41 m/s, 23 deg/s on
+      // average): yaw peaks at ~55 deg/s, pitch ~40, roll ~20, plus the quick turns.
+      const double ease = t < 1.0 ? t * t * (3.0 - 2.0 * t) : 1.0;
+      const auto sweep = [&](double amplitude, double rate, double phase) {
+        return amplitude * (std::sin(rate * t + phase) - std::sin(phase));
+      };
+      position += ease * Eigen::Vector3d(sweep(0.45, 0.9, ph.x()), sweep(0.25, 0.7, ph.y()),
+                                         sweep(0.15, 1.1, ph.z()));
+      lookAt(position, kTarget, yaw, pitch);
+      yaw += ease * (sweep(20.0 * kDeg, 1.6, ph.y()) + sweep(8.0 * kDeg, 3.1, ph.z()));
+      pitch += ease * (sweep(12.0 * kDeg, 2.0, ph.z()) + sweep(5.0 * kDeg, 3.7, ph.x()));
+      roll = ease * (sweep(8.0 * kDeg, 1.3, ph.x()) + sweep(3.0 * kDeg, 4.1, ph.y()));
+      for (const Turn& turn : turns_) (turn.axis == 0 ? yaw : pitch) += turn.at(t);
       break;
     }
   }

@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include <Eigen/Core>
 
@@ -17,6 +18,9 @@ enum class TrajectoryKind {
   Rpy,         // fast roll/pitch/yaw rotations (~40-90 deg/s) with little translation
   Halfsphere,  // moving over a half sphere (r ~0.6 m) while looking at the scene
   Loop,        // a closed ellipse around the room, looking outwards; ends where it began
+  // Hand-held sweeps like TUM fr1 desk/room: ~0.3 m/s, rotation peaking at 1.5-3 degrees per
+  // frame at 30 Hz, with a quick ~14-degree turn every 2-3 s (~5 degrees in its fastest frame).
+  Handheld,
 };
 
 TrajectoryKind trajectoryKindFromName(std::string_view name);  // throws Error on unknown names
@@ -41,6 +45,14 @@ class CameraTrajectory {
     Eigen::Vector3d amplitude, frequency, phase;
     Eigen::Vector3d at(double t) const;
   };
+  // A quick turn of the hand: `angle` radians about yaw (axis 0) or pitch (axis 1) over
+  // `duration` seconds from `start`, with a raised-cosine angular rate (peak 2 angle/duration).
+  struct Turn {
+    double start = 0.0, duration = 0.2, angle = 0.0;
+    int axis = 0;
+    double at(double t) const;
+  };
+  static std::vector<Turn> planTurns(double duration_s, std::uint64_t seed);
 
   TrajectoryKind kind_;
   double duration_;
@@ -48,6 +60,7 @@ class CameraTrajectory {
   Tremor position_tremor_;
   Tremor angle_tremor_;
   Eigen::Vector3d phases_;
+  std::vector<Turn> turns_;  // Handheld only
 };
 
 }  // namespace lumaslam::synth
