@@ -36,20 +36,21 @@ test::RunResult runWithOptions(const synth::Preset& preset, int frames, std::uin
   return run;
 }
 
-// Every sensor effect on. Measured on main 8e76fe9 (`build/tests/test_system_handheld
-// --gtest_filter='*Kinect*'`): tracked 54/150, lost at frame 54 (the first quick turn) and
-// never back (no relocalization without a vocabulary); ATE 0.064 m over the 54 tracked frames.
-// With every frame tracked the rolling shutter dominates the error: 50 frames with it alone
-// give 0.053 m, with every other effect but it 0.004-0.012 m. The bound is 2x the 0.064 m.
+// Every sensor effect on. Before the tracker's reference-keyframe fallback (main 8e76fe9):
+// tracked 54/150, lost at frame 54 (the first quick turn) and never back. Measured with it
+// (7d39fc8, `build/tests/test_system_handheld --gtest_filter='*Kinect*'`): 148/150, ATE
+// 0.068 m; the rolling shutter dominates the error (50 frames with it alone give 0.053 m, with
+// every other effect but it 0.004-0.012 m). The bound is ~2x the 0.068 m.
 TEST(SystemHandheld, TracksHandheldKinectSequence) {
   const auto run = test::runOnPreset("handheld-rgbd", 150, 1);
   EXPECT_GE(static_cast<double>(run.tracked), 0.95 * static_cast<double>(run.frames));
-  EXPECT_LT(run.report.ate.stats.rmse, 0.13);
+  EXPECT_LT(run.report.ate.stats.rmse, 0.14);
 }
 
 // The same motion through an ideal camera (global shutter, no blur, depth registered and in
-// sync; noise and Kinect holes kept): what is left is the hand-held motion itself. Measured on
-// main 8e76fe9: also lost at frame 54, tracked 54/150, ATE 0.005 m over those; the bound is 2x.
+// sync; noise and Kinect holes kept): what is left is the hand-held motion itself. On main
+// 8e76fe9 also lost at frame 54 (54/150); with the reference-keyframe fallback (7d39fc8)
+// 150/150, ATE 3.6 mm; the bound is ~2x.
 TEST(SystemHandheld, TracksHandheldMotionThroughAnIdealCamera) {
   synth::SynthOptions ideal;
   ideal.motion_blur = false;
@@ -57,7 +58,7 @@ TEST(SystemHandheld, TracksHandheldMotionThroughAnIdealCamera) {
   ideal.depth_misalignment = false;
   const auto run = runWithOptions(synth::findPreset("handheld-rgbd"), 150, 1, ideal);
   EXPECT_GE(static_cast<double>(run.tracked), 0.95 * static_cast<double>(run.frames));
-  EXPECT_LT(run.report.ate.stats.rmse, 0.010);
+  EXPECT_LT(run.report.ate.stats.rmse, 0.0075);
 }
 
 }  // namespace
