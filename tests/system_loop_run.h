@@ -2,24 +2,19 @@
 // The `loop-stereo` loop sequence of the System loop tests: one lap of the room, then part of
 // a second lap rendered from other viewpoints (the same room and trajectory sampled with one
 // frame more), so that the camera comes back to where the map started with several keyframes
-// in a row. A vocabulary trained on frames of the first lap; a run with loop closing on or
-// off, as stereo or as monocular (left camera only).
+// in a row. A run with loop closing on or off, as stereo or as monocular (left camera only),
+// with the default vocabulary (trained on real images, none of the generator's): what users
+// run.
 #include <cstdio>
 #include <filesystem>
 #include <optional>
 #include <string>
 
-#include <unistd.h>
-
 #include <gtest/gtest.h>
-#include <opencv2/imgproc.hpp>
 
 #include "test_system_run.h"
 
-#include "lumaslam/feature/orb_extractor.h"
 #include "lumaslam/loop/loop_closer.h"
-#include "lumaslam/loop/vocabulary_io.h"
-#include "lumaslam/loop/vocabulary_training.h"
 
 namespace lumaslam::test {
 
@@ -41,22 +36,6 @@ struct LoopInput {
   }
 };
 
-inline std::filesystem::path trainLoopVocabulary(const LoopInput& input) {
-  const feature::OrbExtractor extractor(feature::OrbSettings{});
-  std::vector<cv::Mat> descriptors;
-  for (int i = 0; i < input.lap_frames; i += 10) {
-    cv::Mat gray;
-    cv::cvtColor(input.lap.render(i).cam0.image, gray, cv::COLOR_BGR2GRAY);
-    descriptors.push_back(extractor.extract(gray).descriptors);
-  }
-  loop::TrainingParams params;
-  params.depth = 4;
-  const auto path = std::filesystem::temp_directory_path() /
-                    ("lumaslam_test_loop_vocab_" + std::to_string(::getpid()) + ".bin");
-  loop::saveVocabulary(loop::trainVocabulary(descriptors, params), path);
-  return path;
-}
-
 struct LoopRun {
   double ate = 0.0;
   double ate_sim3 = 0.0;
@@ -65,12 +44,11 @@ struct LoopRun {
   loop::GlobalBAStats global_ba;
 };
 
-inline LoopRun runLoop(const LoopInput& input, const std::filesystem::path& vocabulary,
-                       bool loop_closing, std::optional<io::SensorType> sensor = std::nullopt) {
+inline LoopRun runLoop(const LoopInput& input, bool loop_closing,
+                       std::optional<io::SensorType> sensor = std::nullopt) {
   SystemOptions options;
   options.enhance_preset = "off";
   options.sequential = true;
-  options.vocabulary = vocabulary;
   options.loop_closing = loop_closing;
   System system(presetSettings(input.lap, {}, sensor), options);
   Trajectory ground_truth;

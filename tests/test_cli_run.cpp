@@ -94,8 +94,9 @@ TEST(CliRun, MissingSettingsOrDatasetIsAClearError) {
 
 // --vocabulary: a vocabulary trained with `lumaslam vocab train` turns relocalization on, and
 // a dataset whose images go black for 20 frames is relocalized in the same run (summary and
-// trajectory); without it the log says relocalization is off; a missing file is an error
-// naming it, before any frame is tracked.
+// trajectory); with no flag the default vocabulary does the same (what users get);
+// `--vocabulary none` turns it off; a missing file is an error naming it, before any frame is
+// tracked.
 TEST(CliRun, VocabularyRelocalizesAfterABlackoutAndAMissingOneIsAnError) {
   TempDir dir("cli_run_vocab");
   const auto data = dir.path() / "data";
@@ -127,7 +128,15 @@ TEST(CliRun, VocabularyRelocalizesAfterABlackoutAndAMissingOneIsAnError) {
   EXPECT_GE(summary["relocalized"].get<int>(), 1) << with.output;
   EXPECT_EQ(lumaslam::io::readTrajectory(dir.path() / "with" / "trajectory.txt").size(), 70U);
 
-  const auto without = runCli(run + " --out " + (dir.path() / "without").string());
+  const auto by_default = runCli(run + " --out " + (dir.path() / "default").string());
+  ASSERT_EQ(by_default.exit_code, 0) << by_default.output;
+  EXPECT_NE(by_default.output.find("relocalization is on"), std::string::npos) << by_default.output;
+  const auto default_summary = readRunSummary(dir.path() / "default");
+  EXPECT_EQ(default_summary["lost"].get<int>(), 20) << by_default.output;
+  EXPECT_GE(default_summary["relocalized"].get<int>(), 1) << by_default.output;
+
+  const auto without =
+      runCli(run + " --vocabulary none --out " + (dir.path() / "without").string());
   ASSERT_EQ(without.exit_code, 0) << without.output;
   EXPECT_NE(without.output.find("relocalization is off"), std::string::npos) << without.output;
 

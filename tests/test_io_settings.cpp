@@ -258,6 +258,9 @@ TEST(Settings, LoopVocabularyIsResolvedAgainstTheSettingsFolder) {
   EXPECT_EQ(loadSettings(file).loop.vocabulary, dir.path() / "voc/orb.bin");
   std::ofstream(file) << kMonoNew << "Loop.vocabulary: \"/abs/ORBvoc.txt\"\n";
   EXPECT_EQ(loadSettings(file).loop.vocabulary, fs::path("/abs/ORBvoc.txt"));
+  // "none" is the keyword that turns the vocabulary off, not a file next to the settings.
+  std::ofstream(file) << kMonoNew << "Loop.vocabulary: none\n";
+  EXPECT_EQ(loadSettings(file).loop.vocabulary, fs::path("none"));
 }
 
 TEST(Settings, LoopClosingIsOnByDefaultAndCanBeTurnedOff) {

@@ -299,10 +299,18 @@ TEST(LoopVocabulary, DamagedBinaryFilesGiveErrors) {
   const auto load = [&] { return loop::loadVocabulary(file); };
   writeText(file, bytes.substr(0, bytes.size() - 100));
   expectError(load, {"bad.bin", "truncated"});
+  writeText(file, bytes.substr(0, 20));  // cut inside the header
+  expectError(load, {"bad.bin", "truncated"});
+  writeText(file, "");
+  expectError(load, {"bad.bin", "not a lumaslam binary"});
   std::string flipped = bytes;
-  flipped[bytes.size() / 2] ^= 0x10;
+  flipped[bytes.size() / 2] ^= 0x10;  // one bit of the descriptor array
   writeText(file, flipped);
-  expectError(load, {"bad.bin", "checksum"});
+  expectError(load, {"bad.bin", "checksum mismatch", "corrupt"});
+  flipped = bytes;
+  flipped[bytes.size() - 1] ^= 0x01;  // the stored checksum itself
+  writeText(file, flipped);
+  expectError(load, {"bad.bin", "checksum mismatch"});
   writeText(file, "10 6 0 0\n");
   expectError(load, {"bad.bin", "vocab convert"});
   std::string version = bytes;

@@ -3,19 +3,14 @@
 // camera moves on meanwhile: the stream resumes 40 frames further on, too far for the search
 // around the last pose. Black frames are Lost with no pose; when the light returns the
 // relocalizer (BoW + EPnP) finds the map within 5 frames, and tracking goes on in the same map
-// (same first keyframe; one Sim3 fits the poses before and after the blackout). A vocabulary
-// trained in the test on frames of the sequence turns relocalization on.
+// (same first keyframe; one Sim3 fits the poses before and after the blackout). The default
+// vocabulary (trained on real images only) is what turns relocalization on, as for users.
 #include <algorithm>
 #include <cmath>
 #include <optional>
 
 #include <gtest/gtest.h>
-#include <opencv2/imgproc.hpp>
 
-#include "lumaslam/feature/orb_extractor.h"
-#include "lumaslam/loop/vocabulary_io.h"
-#include "lumaslam/loop/vocabulary_training.h"
-#include "test_paths.h"
 #include "test_system_run.h"
 
 namespace lumaslam {
@@ -39,27 +34,6 @@ const synth::SequenceRenderer& sequence() {
   return instance;
 }
 
-// A small vocabulary (k 8, L 4) trained on every 10th frame of the sequence, saved to a file.
-const std::filesystem::path& vocabularyFile() {
-  static const test::TempDir dir("system_mono_relocalization");
-  static const std::filesystem::path file = [] {
-    const feature::OrbExtractor extractor{feature::OrbSettings{}};
-    std::vector<cv::Mat> descriptors;
-    for (int i = 0; i < kFrames; i += 10) {
-      cv::Mat gray;
-      cv::cvtColor(sequence().render(i).cam0.image, gray, cv::COLOR_BGR2GRAY);
-      descriptors.push_back(extractor.extract(gray).descriptors);
-    }
-    loop::TrainingParams params;
-    params.branching = 8;
-    params.depth = 4;
-    const auto path = dir.path() / "vocab.bin";
-    loop::saveVocabulary(loop::trainVocabulary(descriptors, params), path);
-    return path;
-  }();
-  return file;
-}
-
 struct BlackoutRun {
   std::vector<track::TrackingOutcome> outcomes;  // per frame
   Trajectory trajectory;
@@ -74,7 +48,6 @@ BlackoutRun runWithBlackout() {
   SystemOptions options;
   options.enhance_preset = "off";
   options.sequential = true;
-  options.vocabulary = vocabularyFile();
   System system(settings, options);
   BlackoutRun run;
   for (int i = 0; i < kFrames; ++i) {

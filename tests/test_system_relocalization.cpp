@@ -2,8 +2,9 @@
 // images go black (20 frames) or over-exposed (10 frames x5) in the middle. Frames without
 // light are Lost with no pose; when the light returns the camera is far from where it was
 // lost, the tracker relocalizes against the same map (BoW + PnP) within 5 frames, and the
-// poses after recovery are in the first map's world. A vocabulary trained in the test on
-// frames of the generator is given through SystemOptions::vocabulary (a file, as users do).
+// poses after recovery are in the first map's world. The vocabulary is the default one
+// (trained on real images, none of the generator's), as users get it; "none" for the run
+// that shows what the tracker does without one.
 // Enhancement `best` is on, as users run it: its online statistics see the dark frames too.
 // Disturbed frames that are tracked must be true (<= 2 cm): no invented poses. A stereo run
 // (xyz-stereo, both images over-exposed) checks the same for the over-exposure.
@@ -13,13 +14,8 @@
 #include <optional>
 
 #include <gtest/gtest.h>
-#include <opencv2/imgproc.hpp>
 
 #include "lumaslam/core/error.h"
-#include "lumaslam/feature/orb_extractor.h"
-#include "lumaslam/loop/vocabulary_io.h"
-#include "lumaslam/loop/vocabulary_training.h"
-#include "test_paths.h"
 #include "test_system_run.h"
 
 namespace lumaslam {
@@ -35,10 +31,6 @@ constexpr double kMaxErrorWhileDisturbed = 0.02;  // metres, for a disturbed fra
 // twice as fast, enhancement off, where x5 over-exposed pairs kept 100 local-map inliers with
 // poses 2-3 cm off before the tracker compared them with the last tracked frame's.
 enum class Sensor { Rgbd, Stereo };
-
-const char* nameOf(Sensor sensor) {
-  return sensor == Sensor::Rgbd ? "rgbd" : "stereo";
-}
 
 const char* enhancementFor(Sensor sensor) {
   return sensor == Sensor::Rgbd ? "best" : "off";
@@ -60,33 +52,6 @@ const synth::SequenceRenderer& sequence(Sensor sensor) {
   return stereo;
 }
 
-// A small vocabulary (k 8, L 4) trained on every 10th frame of the sequence, saved to a file.
-std::filesystem::path trainVocabularyFile(Sensor sensor, const std::filesystem::path& dir) {
-  const feature::OrbExtractor extractor{feature::OrbSettings{}};
-  std::vector<cv::Mat> descriptors;
-  for (int i = 0; i < kFrames; i += 10) {
-    cv::Mat gray;
-    cv::cvtColor(sequence(sensor).render(i).cam0.image, gray, cv::COLOR_BGR2GRAY);
-    descriptors.push_back(extractor.extract(gray).descriptors);
-  }
-  loop::TrainingParams params;
-  params.branching = 8;
-  params.depth = 4;
-  const auto path = dir / fmt::format("vocab_{}.bin", nameOf(sensor));
-  loop::saveVocabulary(loop::trainVocabulary(descriptors, params), path);
-  return path;
-}
-
-const std::filesystem::path& vocabularyFile(Sensor sensor) {
-  static const test::TempDir dir("system_relocalization");
-  if (sensor == Sensor::Rgbd) {
-    static const std::filesystem::path rgbd = trainVocabularyFile(Sensor::Rgbd, dir.path());
-    return rgbd;
-  }
-  static const std::filesystem::path stereo = trainVocabularyFile(Sensor::Stereo, dir.path());
-  return stereo;
-}
-
 using Disturbance = std::function<cv::Mat(const cv::Mat&)>;
 
 struct DisturbedRun {
@@ -104,7 +69,7 @@ DisturbedRun runDisturbed(int dark_frames, const Disturbance& disturb, bool with
   SystemOptions options;
   options.enhance_preset = enhancementFor(sensor);
   options.sequential = sequential;
-  if (with_vocabulary) options.vocabulary = vocabularyFile(sensor);
+  if (!with_vocabulary) options.vocabulary = "none";
   System system(test::presetSettings(sequence(sensor)), options);
   DisturbedRun run;
   run.sensor = sensor;

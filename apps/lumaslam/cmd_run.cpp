@@ -33,8 +33,9 @@ const bool registered = registerCommand(
       cmd.add_flag("--sequential", options->sequential,
                    "Run local mapping in the caller's thread (deterministic)");
       cmd.add_option("--vocabulary", *vocabulary,
-                     "Place-recognition vocabulary for relocalization, overriding "
-                     "Loop.vocabulary (`lumaslam vocab train/convert` output, or ORBvoc.txt)");
+                     "Place-recognition vocabulary for relocalization and loop closing, "
+                     "overriding Loop.vocabulary (`lumaslam vocab train/convert` output, or "
+                     "ORBvoc.txt), or 'none'; default: the vocabulary shipped with lumaslam");
       cmd.add_flag("--no-loop-closing", options->no_loop_closing,
                    "Keep relocalization but do not close loops (overrides Loop.closing)");
       cmd.add_option("--repeat", *repeats,

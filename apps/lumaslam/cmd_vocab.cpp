@@ -1,10 +1,14 @@
 // `lumaslam vocab`: train a place-recognition vocabulary from images, convert ORB-SLAM's
-// DBoW2 text vocabulary (ORBvoc.txt) to our binary format, and describe a vocabulary file.
+// DBoW2 text vocabulary (ORBvoc.txt) to our binary format, describe a vocabulary file, and
+// measure its place recognition on a dataset with poses (vocab_eval.h).
+#include <charconv>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
 #include <string>
+#include <string_view>
+#include <utility>
 #include <vector>
 
 #include <spdlog/spdlog.h>
@@ -16,6 +20,7 @@
 #include "lumaslam/feature/orb_extractor.h"
 #include "lumaslam/loop/vocabulary_io.h"
 #include "lumaslam/loop/vocabulary_training.h"
+#include "vocab_eval.h"
 
 namespace lumaslam::cli {
 namespace {
@@ -42,6 +47,21 @@ cv::Mat toGray(const cv::Mat& image, const std::string& name) {
   return gray;
 }
 
+// "INPUT@N": every Nth frame of that input (overrides --stride); an existing path ending in
+// "@digits" is taken as it is.
+std::pair<std::string, int> inputAndStride(const std::string& input, int stride) {
+  const std::size_t at = input.rfind('@');
+  if (at == std::string::npos || at + 1 == input.size() || std::filesystem::exists(input)) {
+    return {input, stride};
+  }
+  const std::string_view digits = std::string_view(input).substr(at + 1);
+  if (digits.find_first_not_of("0123456789") != std::string_view::npos) return {input, stride};
+  int own = 0;
+  const auto [end, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), own);
+  if (ec != std::errc() || own < 1) fail("{}: the stride after '@' must be 1..2^31", input);
+  return {input.substr(0, at), own};
+}
+
 void printSummary(const loop::Vocabulary& vocabulary) {
   std::size_t weighted = 0;
   for (loop::WordId w = 0; w < vocabulary.wordCount(); ++w) weighted += vocabulary.weight(w) > 0;
@@ -62,11 +82,13 @@ int runTrain(const VocabOptions& options) {
     const int remaining =
         options.max_images > 0 ? options.max_images - static_cast<int>(descriptors.size()) : 0;
     if (options.max_images > 0 && remaining <= 0) break;
-    forEachInputImage(input, remaining, options.stride,
-                      [&](const std::string& name, const cv::Mat& image) {
-                        descriptors.push_back(extractor.extract(toGray(image, name)).descriptors);
-                        count += static_cast<std::size_t>(descriptors.back().rows);
-                      });
+    const auto [path, stride] = inputAndStride(input, options.stride);
+    const std::size_t before = descriptors.size();
+    forEachInputImage(path, remaining, stride, [&](const std::string& name, const cv::Mat& image) {
+      descriptors.push_back(extractor.extract(toGray(image, name)).descriptors);
+      count += static_cast<std::size_t>(descriptors.back().rows);
+    });
+    spdlog::info("{}: {} images (every {})", path, descriptors.size() - before, stride);
   }
   if (descriptors.empty()) fail("no images found in the inputs");
   spdlog::info("{} images, {} ORB descriptors in {:.1f} s", descriptors.size(), count,
@@ -104,12 +126,15 @@ int runInfo(const VocabOptions& options) {
 }
 
 const bool registered = registerCommand(
-    "vocab", "Place-recognition vocabulary: train, convert ORBvoc.txt, info",
+    "vocab", "Place-recognition vocabulary: train, convert ORBvoc.txt, info, eval",
     [](CLI::App& cmd) -> Runner {
       auto options = std::make_shared<VocabOptions>();
       cmd.require_subcommand(1);
       CLI::App* train = cmd.add_subcommand("train", "Train a vocabulary tree from images");
-      train->add_option("INPUT", options->inputs, "Image folders or dataset specs (tum:PATH, ...)")
+      train
+          ->add_option("INPUT", options->inputs,
+                       "Images, image folders or dataset specs (tum:PATH, video:FILE, ...); "
+                       "INPUT@N takes every Nth frame of that input")
           ->required();
       train->add_option("--out", options->out, "Binary vocabulary file to write")->required();
       train->add_option("--k", options->training.branching, "Branching factor (default 10)");
@@ -126,9 +151,32 @@ const bool registered = registerCommand(
       convert->add_option("--out", options->out, "Binary vocabulary file to write")->required();
       CLI::App* info = cmd.add_subcommand("info", "Describe a vocabulary file (binary or text)");
       info->add_option("FILE", options->file, "Vocabulary file")->required();
-      return [options, train, convert] {
+      auto eval_options = std::make_shared<VocabEvalOptions>();
+      CLI::App* eval = cmd.add_subcommand(
+          "eval", "Place-recognition recall / precision of a vocabulary on a dataset with poses");
+      eval->add_option("FILE", eval_options->vocabulary, "Vocabulary file")->required();
+      eval->add_option("--dataset", eval_options->dataset, "tum:PATH, kitti:PATH, ... with GT")
+          ->required();
+      eval->add_option("--keyframe-every", eval_options->keyframe_every,
+                       "Every Nth frame is a keyframe, the others query")
+          ->capture_default_str();
+      eval->add_option("--max-distance", eval_options->max_distance,
+                       "A keyframe within this many metres ...")
+          ->capture_default_str();
+      eval->add_option("--max-angle", eval_options->max_angle_deg,
+                       "... and degrees of the query is a correct answer")
+          ->capture_default_str();
+      eval->add_option("--exclude-window", eval_options->exclude_window,
+                       "Hide keyframes within N frames of the query (revisits only)")
+          ->capture_default_str();
+      eval->add_option("--features", eval_options->features, "ORB features per frame")
+          ->capture_default_str();
+      eval->add_option("--top", eval_options->top, "Also count a correct answer in the first N")
+          ->capture_default_str();
+      return [options, eval_options, train, convert, eval] {
         if (train->parsed()) return runTrain(*options);
         if (convert->parsed()) return runConvert(*options);
+        if (eval->parsed()) return runVocabEval(*eval_options);
         return runInfo(*options);
       };
     });

@@ -16,6 +16,7 @@
 #include "lumaslam/io/dataset_reader.h"
 #include "lumaslam/io/settings.h"
 #include "lumaslam/io/trajectory_io.h"
+#include "lumaslam/loop/loop_closer.h"
 #include "lumaslam/system.h"
 
 namespace lumaslam::cli {
@@ -100,6 +101,7 @@ int runPipeline(const RunOptions& options) {
 
   double mean = 0.0;
   for (double v : totals) mean += v / static_cast<double>(totals.size());
+  const std::size_t loops = system.loopCloser() ? system.loopCloser()->closedLoops().size() : 0;
   nlohmann::json summary = {{"dataset", options.dataset},
                             {"settings", settings_path.string()},
                             {"frames", frames},
@@ -107,6 +109,8 @@ int runPipeline(const RunOptions& options) {
                             {"lost", frames - tracked},
                             {"relocalized", relocalized},
                             {"keyframes", system.keyFrameCount()},
+                            {"vocabulary", system.vocabularyDescription()},
+                            {"loops", loops},
                             {"map_points", system.mapPointCount()},
                             {"ms_per_frame", {{"mean", mean}, {"median", median(totals)}}}};
   summary["detector"] = {{"name", system.detectorDescription()},

@@ -18,6 +18,7 @@
 #include "lumaslam/io/dataset_reader.h"
 #include "lumaslam/loop/loop_closer.h"
 #include "lumaslam/loop/place_recognition.h"
+#include "lumaslam/loop/vocabulary_choice.h"
 #include "lumaslam/mapping/local_mapper.h"
 #include "lumaslam/track/feature_subset.h"
 #include "lumaslam/track/frame_builder.h"
@@ -95,15 +96,28 @@ System::System(const io::Settings& settings, const SystemOptions& options)
     detector_params_ = std::make_unique<detect::DetectorParams>(std::move(*params));
   }
 
-  const auto vocabulary = options.vocabulary.value_or(settings_.loop.vocabulary);
-  if (vocabulary.empty()) {
-    spdlog::info("no vocabulary (Loop.vocabulary / --vocabulary): relocalization is off");
+  const loop::VocabularyChoice vocabulary =
+      loop::chooseVocabulary(options.vocabulary.value_or(settings_.loop.vocabulary));
+  if (vocabulary.file.empty()) {
+    const auto log_level = vocabulary.default_missing ? spdlog::level::warn : spdlog::level::info;
+    spdlog::log(log_level,
+                "no vocabulary ({}): relocalization is off, no loop closing (name one with "
+                "Loop.vocabulary / --vocabulary or {})",
+                vocabulary.origin, loop::kVocabularyEnvironment);
   } else {
-    places_ = loop::PlaceRecognition::fromFile(vocabulary);
-    spdlog::info("{}: vocabulary with {} words (k {}, L {}): relocalization is on",
-                 vocabulary.string(), places_->vocabulary().wordCount(),
-                 places_->vocabulary().branching(), places_->vocabulary().depth());
+    const auto start = Clock::now();
+    try {
+      places_ = loop::PlaceRecognition::fromFile(vocabulary.file);
+    } catch (const Error& e) {
+      fail("{} (vocabulary from {}; 'none' runs without one)", e.what(), vocabulary.origin);
+    }
+    spdlog::info(
+        "{}: vocabulary ({}) with {} words (k {}, L {}), loaded in {:.0f} ms: "
+        "relocalization is on",
+        vocabulary.file.string(), vocabulary.origin, places_->vocabulary().wordCount(),
+        places_->vocabulary().branching(), places_->vocabulary().depth(), msSince(start));
     map_->setKeyFrameIndex(places_);
+    vocabulary_description_ = vocabulary.file.string();
   }
 
   const auto camera = frameCameraFrom(settings_, rectifier_.get());

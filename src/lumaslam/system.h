@@ -46,7 +46,8 @@ struct SystemOptions {
   std::optional<bool> sequential;             // overrides System.sequential
   // Overrides the Detector.* choice: "yolo:MODEL.onnx", "boxes:FILE" or "none".
   std::optional<std::string> detector;
-  // Overrides Loop.vocabulary (a vocabulary file for relocalization; see docs/settings.md).
+  // Overrides Loop.vocabulary: a vocabulary file for relocalization and loop closing, or
+  // "none". Neither set: the default vocabulary (loop/vocabulary_choice.h).
   std::optional<std::filesystem::path> vocabulary;
   std::optional<bool> loop_closing;  // overrides Loop.closing (needs a vocabulary)
 };
@@ -106,8 +107,8 @@ class System {
   std::size_t keyFrameCount() const;
   std::size_t mapPointCount() const;
   const track::Tracker& tracker() const { return *tracker_; }
-  // Vocabulary + keyframe database, shared by relocalization and loop closing; null when no
-  // vocabulary was given (relocalization off).
+  // Vocabulary + keyframe database, shared by relocalization and loop closing; null without a
+  // vocabulary ("none", or no default vocabulary found): relocalization off.
   std::shared_ptr<loop::PlaceRecognition> placeRecognition() const { return places_; }
   // Null when loop closing is off (no vocabulary, Loop.closing 0 or --no-loop-closing).
   const loop::LoopCloser* loopCloser() const { return loop_closer_.get(); }
@@ -116,6 +117,8 @@ class System {
   const track::FrameCamera& frameCamera() const;
   // "none", "yolo MODEL" or "box_file FILE".
   const std::string& detectorDescription() const { return detector_description_; }
+  // The vocabulary file in use, or "none".
+  const std::string& vocabularyDescription() const { return vocabulary_description_; }
 
  private:
   struct Images {
@@ -148,6 +151,7 @@ class System {
   std::unique_ptr<detect::DetectorParams> detector_params_;
   std::unique_ptr<detect::DetectionWorker> detector_;
   std::string detector_description_ = "none";
+  std::string vocabulary_description_ = "none";
   std::unique_ptr<track::FrameBuilder> frame_builder_;
   std::unique_ptr<mapping::LocalMapper> mapper_;
   std::unique_ptr<track::Tracker> tracker_;

@@ -388,7 +388,9 @@ Settings loadSettings(const std::filesystem::path& path, std::optional<SensorTyp
   Settings settings = Settings::fromFile(std::move(file), sensor);
   settings.path = path;
   for (auto* relative : {&settings.system.datasetRoot, &settings.loop.vocabulary}) {
-    if (!relative->empty() && relative->is_relative()) *relative = path.parent_path() / *relative;
+    // "none" (Loop.vocabulary: none) is a keyword, not a file next to the settings.
+    if (relative->empty() || relative->is_absolute() || *relative == "none") continue;
+    *relative = path.parent_path() / *relative;
   }
   return settings;
 }

@@ -79,8 +79,9 @@ struct SystemSettings {
 
 struct LoopSettings {
   // Loop.vocabulary: place-recognition vocabulary (our binary or DBoW2 text, e.g. ORBvoc.txt)
-  // for relocalization; relative paths resolved against the settings file's folder. Empty
-  // when not set: relocalization is off.
+  // for relocalization and loop closing; relative paths resolved against the settings
+  // file's folder; "none" kept as is (no vocabulary). Empty when not set: the System loads
+  // the default vocabulary (loop/vocabulary_choice.h).
   std::filesystem::path vocabulary;
   // Loop.closing: close loops (own thread) when a vocabulary is given (default 1).
   bool closing = true;

@@ -1,5 +1,6 @@
 #include "lumaslam/loop/vocabulary_io.h"
 
+#include <algorithm>
 #include <array>
 #include <charconv>
 #include <cmath>
@@ -193,12 +194,17 @@ Vocabulary loadVocabulary(const std::filesystem::path& file) {
   const auto file_size = static_cast<std::uint64_t>(in.tellg());
   in.seekg(0);
   Header header;
-  if (file_size < sizeof(Header) || !in.read(reinterpret_cast<char*>(&header), sizeof(header)) ||
-      header.magic != kMagic) {
+  const std::size_t header_bytes = std::min<std::uint64_t>(file_size, sizeof(Header));
+  in.read(reinterpret_cast<char*>(&header), static_cast<std::streamsize>(header_bytes));
+  if (!in || header_bytes < kMagic.size() || header.magic != kMagic) {
     fail(
         "{}: not a lumaslam binary vocabulary (for DBoW2 text such as ORBvoc.txt use "
         "`lumaslam vocab convert`)",
         name);
+  }
+  if (header_bytes < sizeof(Header)) {
+    fail("{}: {} bytes, shorter than the {}-byte header: truncated", name, file_size,
+         sizeof(Header));
   }
   if (header.version != kVersion) {
     fail("{}: vocabulary format version {} (this build reads version {})", name, header.version,
@@ -233,7 +239,10 @@ Vocabulary loadVocabulary(const std::filesystem::path& file) {
   std::uint64_t stored = 0;
   in.read(reinterpret_cast<char*>(&stored), sizeof(stored));
   if (!in) fail("{}: cannot read vocabulary arrays", name);
-  if (stored != checksum.value()) fail("{}: checksum mismatch (file corrupt)", name);
+  if (stored != checksum.value()) {
+    fail("{}: checksum mismatch (stored {:016x}, computed {:016x}): the file is corrupt", name,
+         stored, checksum.value());
+  }
   return Vocabulary(std::move(data), name);
 }
 
