@@ -33,6 +33,25 @@ double median(std::vector<double> values) {
   return values[values.size() / 2];
 }
 
+// Every map of the atlas in summary.json; the main one is trajectory.txt, the others (never
+// merged into it) trajectory_map<ID>.txt, each in its own world.
+nlohmann::json writeMapTrajectories(const System& system, const std::filesystem::path& out) {
+  nlohmann::json maps = nlohmann::json::array();
+  const map::MapId main = system.mainMap();
+  for (const auto& [id, frames] : system.mapTrajectories()) {
+    const std::string file =
+        id == main ? std::string("trajectory.txt") : fmt::format("trajectory_map{}.txt", id);
+    if (id != main) io::writeTrajectory(out / file, frames);
+    maps.push_back({{"id", id},
+                    {"main", id == main},
+                    {"frames", frames.size()},
+                    {"first_timestamp", frames.front().timestamp},
+                    {"last_timestamp", frames.back().timestamp},
+                    {"trajectory", file}});
+  }
+  return maps;
+}
+
 }  // namespace
 
 int runPipeline(const RunOptions& options) {
@@ -62,7 +81,7 @@ int runPipeline(const RunOptions& options) {
 
   std::ofstream timing(options.out / "timing.csv");
   timing << "frame,timestamp,state,inliers,enhance_ms,features_ms,tracking_ms,mapping_ms,total_ms,"
-            "detection_wait_ms,detection_ms,boxes,dropped_features\n";
+            "detection_wait_ms,detection_ms,boxes,dropped_features,map\n";
   const bool progress = isatty(STDERR_FILENO) != 0;
   std::vector<double> totals;
   std::size_t tracked = 0;
@@ -77,9 +96,9 @@ int runPipeline(const RunOptions& options) {
            << track::toString(result.outcome.state) << ',' << result.outcome.inliers << ','
            << fmt::format("{:.3f},{:.3f},{:.3f},{:.3f},{:.3f}", t.enhance, t.features, t.tracking,
                           t.mapping, t.total)
-           << fmt::format(",{:.3f},{:.3f},{},{}", t.detection_wait, t.detection,
+           << fmt::format(",{:.3f},{:.3f},{},{},", t.detection_wait, t.detection,
                           result.dynamic_boxes.size(), result.dropped_features.size())
-           << '\n';
+           << (result.outcome.T_w_c ? std::to_string(result.outcome.map) : std::string()) << '\n';
     dropped_sum += static_cast<double>(result.dropped_features.size());
     wait_sum += t.detection_wait;
     totals.push_back(t.total);
@@ -98,10 +117,16 @@ int runPipeline(const RunOptions& options) {
   const auto trajectory = system.frameTrajectory();
   io::writeTrajectory(options.out / "trajectory.txt", trajectory);
   io::writeTrajectory(options.out / "keyframes.txt", system.keyFrameTrajectory());
+  const nlohmann::json maps = writeMapTrajectories(system, options.out);
 
   double mean = 0.0;
   for (double v : totals) mean += v / static_cast<double>(totals.size());
-  const std::size_t loops = system.loopCloser() ? system.loopCloser()->closedLoops().size() : 0;
+  std::size_t loops = 0;
+  std::size_t merges = 0;
+  if (system.loopCloser()) {
+    for (const auto& closed : system.loopCloser()->closedLoops())
+      ++(closed.merged_map ? merges : loops);
+  }
   nlohmann::json summary = {{"dataset", options.dataset},
                             {"settings", settings_path.string()},
                             {"frames", frames},
@@ -111,6 +136,8 @@ int runPipeline(const RunOptions& options) {
                             {"keyframes", system.keyFrameCount()},
                             {"vocabulary", system.vocabularyDescription()},
                             {"loops", loops},
+                            {"merges", merges},
+                            {"maps", maps},
                             {"map_points", system.mapPointCount()},
                             {"ms_per_frame", {{"mean", mean}, {"median", median(totals)}}}};
   summary["detector"] = {{"name", system.detectorDescription()},

@@ -148,6 +148,7 @@ System::System(const io::Settings& settings, const SystemOptions& options)
   track::TrackerParams tracker_params;
   tracker_params.max_frames_between_keyframes = std::max(1, static_cast<int>(settings_.camera.fps));
   tracker_params.inlier_reference_half_life = tracker_params.max_frames_between_keyframes;
+  tracker_params.new_map_after_s = settings_.system.newMapAfter;
   if (stereo) {
     // ORB-SLAM starts a stereo map from a frame with > 500 keypoints, of which typically half
     // have a stereo match; 500 matches would delay EuRoC V1_01 by 6 frames with enhancement
@@ -402,12 +403,32 @@ Trajectory System::toCalibratedCamera(Trajectory trajectory) const {
   return trajectory;
 }
 
+std::map<map::MapId, Trajectory> System::mapTrajectories() const {
+  auto by_map = tracker_->trajectory().framesByMap();
+  for (auto& [id, trajectory] : by_map) trajectory = toCalibratedCamera(std::move(trajectory));
+  return by_map;
+}
+
+map::MapId System::mainMap() const {
+  map::MapId main = 0;
+  std::size_t most = 0;
+  for (const auto& [id, trajectory] : tracker_->trajectory().framesByMap()) {
+    if (trajectory.size() > most) {
+      most = trajectory.size();
+      main = id;
+    }
+  }
+  return main;
+}
+
 Trajectory System::frameTrajectory() const {
-  return toCalibratedCamera(tracker_->trajectory().frames());
+  auto by_map = mapTrajectories();
+  const auto main = by_map.find(mainMap());
+  return main == by_map.end() ? Trajectory{} : std::move(main->second);
 }
 
 Trajectory System::keyFrameTrajectory() const {
-  return toCalibratedCamera(track::keyFrameTrajectory(map_->keyFrames()));
+  return toCalibratedCamera(track::keyFrameTrajectory(map_->keyFramesOf(mainMap())));
 }
 
 const track::FrameCamera& System::frameCamera() const {

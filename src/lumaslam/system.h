@@ -3,6 +3,7 @@
 // the caller's thread) and the local mapper (own thread, or inline when System.sequential).
 #include <filesystem>
 #include <functional>
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -102,8 +103,12 @@ class System {
 
   // Poses of the left / rgb camera as calibrated (for a rectified pair, converted back from
   // the rectified camera): T_w_c, world = that camera at the first keyframe.
-  Trajectory frameTrajectory() const;     // every tracked frame
-  Trajectory keyFrameTrajectory() const;  // keyframes only
+  // Tracked frames of the main map: the map of the atlas with most frames (with one map, every
+  // tracked frame). Frames of maps never merged into it are in mapTrajectories() only.
+  Trajectory frameTrajectory() const;
+  std::map<map::MapId, Trajectory> mapTrajectories() const;  // every map's tracked frames
+  map::MapId mainMap() const;
+  Trajectory keyFrameTrajectory() const;  // keyframes of the main map
   std::size_t keyFrameCount() const;
   std::size_t mapPointCount() const;
   const track::Tracker& tracker() const { return *tracker_; }

@@ -265,6 +265,7 @@ SystemSettings readSystem(const KeyReader& in) {
   system.sequential = in.get<bool>({"System.sequential"}, false);
   system.queueCapacity = in.get<int>({"System.queueCapacity"}, system.queueCapacity);
   in.requireAtLeast("System.queueCapacity", system.queueCapacity, 1);
+  system.newMapAfter = in.get<double>({"System.newMapAfter"}, system.newMapAfter);
   if (const auto root = in.find<std::string>({"System.datasetRoot"})) {
     if (root->empty()) in.file().invalid("System.datasetRoot", "must not be empty");
     system.datasetRoot = *root;

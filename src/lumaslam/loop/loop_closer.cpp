@@ -11,6 +11,7 @@
 
 #include <spdlog/spdlog.h>
 
+#include "lumaslam/loop/map_merge.h"
 #include "lumaslam/map/keyframe.h"
 #include "lumaslam/map/map_point.h"
 #include "lumaslam/mapping/ba_observation.h"
@@ -194,11 +195,20 @@ void LoopCloser::process(const std::shared_ptr<map::KeyFrame>& keyframe) {
     rejected_ += static_cast<int>(detection.consistent.size());
     return;
   }
-  const ClosedLoop closed = correctLoop(*match);
-  spdlog::info(
-      "loop closed: keyframe {} -> {}, {} inliers, moved {:.1f} mm / {:.2f} deg, scale {:.3f}",
-      closed.current, closed.loop, closed.inliers, 1000.0 * closed.correction_m,
-      closed.correction_deg, closed.correction_scale);
+  const bool across_maps = match->loop->mapId() != keyframe->mapId();
+  const ClosedLoop closed = across_maps ? mergeMaps(*match) : correctLoop(*match);
+  if (closed.merged_map) {
+    spdlog::info(
+        "maps merged: map {} into map {} (keyframe {} -> {}, {} inliers), moved {:.1f} mm / "
+        "{:.2f} deg, scale {:.3f}",
+        *closed.merged_map, closed.into_map, closed.current, closed.loop, closed.inliers,
+        1000.0 * closed.correction_m, closed.correction_deg, closed.correction_scale);
+  } else {
+    spdlog::info(
+        "loop closed: keyframe {} -> {}, {} inliers, moved {:.1f} mm / {:.2f} deg, scale {:.3f}",
+        closed.current, closed.loop, closed.inliers, 1000.0 * closed.correction_m,
+        closed.correction_deg, closed.correction_scale);
+  }
   {
     std::lock_guard lock(closed_mutex_);
     closed_.push_back(closed);
@@ -209,18 +219,18 @@ void LoopCloser::process(const std::shared_ptr<map::KeyFrame>& keyframe) {
 }
 
 bool LoopCloser::globalBundleAdjustment() {
-  // Snapshot of the whole map (no lock across objects: each accessor copies).
+  // Snapshot of the whole atlas (no lock across objects: each accessor copies); each map's
+  // origin fixes its gauge.
   const auto keyframes = map_->keyFrames();
-  const auto origin = map_->originKeyFrame();
   if (keyframes.size() < 2) return false;
   const auto& k = keyframes.front()->intrinsics();
   optimize::LocalBAProblem problem;
   problem.camera = {k.fx, k.fy, k.cx, k.cy, k.bf};
   PosesById snapshot;
   for (const auto& kf : keyframes) {
-    if (kf->isBad()) continue;
+    if (kf->isBad() || kf->mapId() == map::kDiscardedMap) continue;
     snapshot[kf->id()] = kf->T_c_w();
-    problem.keyFrames.push_back({kf->id(), snapshot[kf->id()], kf == origin});
+    problem.keyFrames.push_back({kf->id(), snapshot[kf->id()], map_->isMapOrigin(*kf)});
   }
   std::vector<std::shared_ptr<map::MapPoint>> points;
   for (const auto& point : map_->mapPoints()) {
@@ -370,6 +380,29 @@ std::optional<LoopMatch> LoopCloser::computeSim3Loop(const KeyFramePtr& current,
   return LoopMatch{current, candidate, T_c_w, S_cw, std::move(matched), inliers};
 }
 
+ClosedLoop LoopCloser::mergeMaps(const LoopMatch& match) {
+  stopGlobalBundleAdjustment();
+  const MapMerge merge = mergeFor(match);
+  {
+    std::unique_lock<std::mutex> mapping_paused;
+    if (pause_mapping_) mapping_paused = pause_mapping_();
+    std::lock_guard update(map_->updateMutex());
+    moveMapInto(*map_, merge);
+  }
+  // Both keyframes are in one world now: join them as a loop with no further correction.
+  LoopMatch joined = match;
+  joined.T_c_w = match.current->T_c_w();
+  joined.S_c_w = Sim3::fromSE3(joined.T_c_w);
+  ClosedLoop closed = correctLoop(joined);
+  closed.merged_map = merge.moved;
+  closed.into_map = merge.into;
+  const SE3 move = merge.S_wmoved_winto.toSE3();
+  closed.correction_m = move.translation().norm();
+  closed.correction_deg = Eigen::AngleAxisd(move.linear()).angle() * 180.0 / M_PI;
+  closed.correction_scale = merge.S_wmoved_winto.scale;
+  return closed;
+}
+
 ClosedLoop LoopCloser::correctLoop(const LoopMatch& match) {
   stopGlobalBundleAdjustment();  // a new loop: the running adjustment is out of date
   std::unique_lock<std::mutex> mapping_paused;
@@ -456,7 +489,7 @@ ClosedLoop LoopCloser::correctLoop(const LoopMatch& match) {
   SimsById before_loop;
   std::vector<map::Id> vertex_ids;
   for (const auto& kf : keyframes) {
-    if (kf->isBad()) continue;
+    if (kf->isBad() || kf->mapId() != current->mapId()) continue;
     const Sim3 S = corrected.contains(kf->id()) ? corrected[kf->id()] : Sim3::fromSE3(kf->T_c_w());
     initial[kf->id()] = S;
     before_loop[kf->id()] = uncorrected.contains(kf->id()) ? uncorrected[kf->id()] : S;

@@ -18,6 +18,9 @@
 //     other point with the keyframe it was corrected by (or its reference keyframe). In Sim3
 //     (monocular) every keyframe is a Sim3 vertex (optimize::optimizeSim3PoseGraph), and a
 //     point moves by S_corrected^-1 * S_before of its keyframe, which rescales it too.
+//     Atlas: when the loop keyframe is in another map than the current one, the newer map
+//     first moves into the older one's world (mergeMaps, map_merge.h), then the same
+//     correction joins them; only the joined map's keyframes enter the essential graph.
 //  4. optionally a global bundle adjustment of every keyframe and point (origin fixed), solved
 //     on a snapshot without locks and written back with mapping paused; keyframes added
 //     meanwhile follow their nearest ancestor in the spanning tree (ORB-SLAM's RunGlobalBA).
@@ -86,6 +89,10 @@ struct ClosedLoop {
   double correction_m = 0.0;  // how far the current keyframe moved
   double correction_deg = 0.0;
   double correction_scale = 1.0;  // the current keyframe's map scale vs the loop's (Sim3)
+  // Set when the two keyframes were in different maps of the atlas: the newer map was moved
+  // (by correction_m / correction_deg / correction_scale) into the older one (map_merge.h).
+  std::optional<map::MapId> merged_map;
+  map::MapId into_map = 0;
 };
 
 struct GlobalBAStats {
@@ -123,6 +130,7 @@ class LoopCloser {
       const std::shared_ptr<map::KeyFrame>& current,
       const std::vector<std::shared_ptr<map::KeyFrame>>& candidates) const;
   ClosedLoop correctLoop(const LoopMatch& match);
+  ClosedLoop mergeMaps(const LoopMatch& match);
   // Returns false if there was nothing to adjust or it was aborted (map unchanged then).
   bool globalBundleAdjustment();
   void abortGlobalBundleAdjustment() { abort_global_ba_ = true; }

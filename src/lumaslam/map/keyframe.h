@@ -69,6 +69,9 @@ class KeyFrame : public std::enable_shared_from_this<KeyFrame> {
   std::vector<std::shared_ptr<KeyFrame>> loopEdges() const;
 
   bool isBad() const { return bad_.load(); }
+  // Which map of the atlas the keyframe belongs to (map.h); changes when maps are merged.
+  MapId mapId() const { return map_id_.load(); }
+  void setMapId(MapId id) { map_id_ = id; }
   // Pose relative to the parent, kept when the keyframe is retired so that frames tracked
   // against it can still be expressed in the world (ORB-SLAM's mTcp).
   SE3 T_c_parent() const;
@@ -102,6 +105,7 @@ class KeyFrame : public std::enable_shared_from_this<KeyFrame> {
   std::map<Id, std::weak_ptr<KeyFrame>> loop_edges_;
 
   std::atomic<bool> bad_{false};
+  std::atomic<MapId> map_id_{0};
 };
 
 }  // namespace lumaslam::map

@@ -9,6 +9,7 @@ void Map::addKeyFrame(const std::shared_ptr<KeyFrame>& keyframe) {
   {
     std::unique_lock lock(mutex_);
     if (keyframes_.empty() && origin_.expired()) origin_ = keyframe;
+    origins_.try_emplace(keyframe->mapId(), keyframe->id());
     keyframes_[keyframe->id()] = keyframe;
   }
   if (index_) index_->add(keyframe);
@@ -74,6 +75,45 @@ std::shared_ptr<KeyFrame> Map::originKeyFrame() const {
   return origin_.lock();
 }
 
+bool Map::isOrigin(const KeyFrame& keyframe) const {
+  std::shared_lock lock(mutex_);
+  return std::any_of(origins_.begin(), origins_.end(),
+                     [&](const auto& entry) { return entry.second == keyframe.id(); });
+}
+
+bool Map::isMapOrigin(const KeyFrame& keyframe) const {
+  std::shared_lock lock(mutex_);
+  const auto it = origins_.find(keyframe.mapId());
+  return it != origins_.end() && it->second == keyframe.id();
+}
+
+std::vector<std::shared_ptr<KeyFrame>> Map::keyFramesOf(MapId map) const {
+  auto keyframes = keyFrames();
+  std::erase_if(keyframes, [map](const auto& kf) { return kf->mapId() != map; });
+  return keyframes;
+}
+
+std::size_t Map::keyFrameCountOf(MapId map) const {
+  std::shared_lock lock(mutex_);
+  return static_cast<std::size_t>(
+      std::count_if(keyframes_.begin(), keyframes_.end(),
+                    [map](const auto& entry) { return entry.second->mapId() == map; }));
+}
+
+void Map::relabelMap(MapId moved, MapId into) {
+  std::unique_lock lock(mutex_);
+  for (const auto& [id, keyframe] : keyframes_) {
+    if (keyframe->mapId() == moved) keyframe->setMapId(into);
+  }
+}
+
+void Map::discardMap(MapId map) {
+  const auto discarded = keyFramesOf(map);
+  relabelMap(map, kDiscardedMap);
+  if (!index_) return;
+  for (const auto& keyframe : discarded) index_->erase(keyframe->id());
+}
+
 void Map::retireMapPoint(const std::shared_ptr<MapPoint>& point) {
   if (!point) return;
   point->markBad();
@@ -87,7 +127,7 @@ void Map::retireMapPoint(const std::shared_ptr<MapPoint>& point) {
 }
 
 bool Map::retireKeyFrame(const std::shared_ptr<KeyFrame>& keyframe) {
-  if (!keyframe || keyframe->isBad() || keyframe == originKeyFrame()) return false;
+  if (!keyframe || keyframe->isBad() || isOrigin(*keyframe)) return false;
 
   for (const auto& neighbour : keyframe->covisibles()) neighbour->eraseConnection(keyframe->id());
   for (const auto& point : keyframe->mapPoints()) {
@@ -160,6 +200,8 @@ void Map::clear() {
     keyframes_.clear();
     points_.clear();
     origin_.reset();
+    origins_.clear();
+    next_map_id_ = 1;
     next_keyframe_id_ = 0;
     next_point_id_ = 0;
   }

@@ -13,6 +13,10 @@
 //      observations, releases, then writes its own edges, then each neighbour's).
 //   4. The KeyFrameIndex's own lock (place-recognition database): a leaf, taken only inside
 //      its calls, which the Map makes with none of its own locks held.
+// Atlas (ORB-SLAM3): the Map holds every map the tracker started; each keyframe carries its
+// map's id, maps share no covisibility, and merging relabels one map's keyframes with the
+// other's id (loop/map_merger.h). Each map's first keyframe is its origin: never retired, and
+// fixed in bundle adjustment (the gauge).
 // Objects are never deleted under someone's feet: retiring marks them bad and removes them
 // from the Map; shared_ptrs held elsewhere keep them alive until released.
 #include <atomic>
@@ -42,7 +46,21 @@ class Map {
   std::vector<std::shared_ptr<MapPoint>> mapPoints() const;  // sorted by id
   std::size_t keyFrameCount() const;
   std::size_t mapPointCount() const;
-  std::shared_ptr<KeyFrame> originKeyFrame() const;
+  std::shared_ptr<KeyFrame> originKeyFrame() const;  // the first map's
+
+  // A fresh id for a new map of the atlas (the first map is 0).
+  MapId newMapId() { return next_map_id_++; }
+  // True for the first keyframe of any map, merged since or not: never retired.
+  bool isOrigin(const KeyFrame& keyframe) const;
+  // True for the first keyframe of the keyframe's (current) map: fixed in bundle adjustment.
+  bool isMapOrigin(const KeyFrame& keyframe) const;
+  std::vector<std::shared_ptr<KeyFrame>> keyFramesOf(MapId map) const;  // sorted by id
+  std::size_t keyFrameCountOf(MapId map) const;
+  // Keyframes of `moved` join `into` (their poses must already be in its world).
+  void relabelMap(MapId moved, MapId into);
+  // Resets a map (ORB-SLAM3's ResetActiveMap): its keyframes leave place recognition and take
+  // the id kDiscardedMap, so that no frame, relocalization, loop or merge uses them again.
+  void discardMap(MapId map);
 
   // Marks the point bad, detaches it from every keyframe and removes it from the map.
   void retireMapPoint(const std::shared_ptr<MapPoint>& point);
@@ -69,9 +87,11 @@ class Map {
   std::unordered_map<Id, std::shared_ptr<KeyFrame>> keyframes_;
   std::unordered_map<Id, std::shared_ptr<MapPoint>> points_;
   std::weak_ptr<KeyFrame> origin_;
+  std::unordered_map<MapId, Id> origins_;  // per map id ever used: its first keyframe
   std::shared_ptr<KeyFrameIndex> index_;
   std::atomic<Id> next_keyframe_id_{0};
   std::atomic<Id> next_point_id_{0};
+  std::atomic<MapId> next_map_id_{1};
 };
 
 }  // namespace lumaslam::map

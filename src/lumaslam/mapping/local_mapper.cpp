@@ -91,7 +91,9 @@ void LocalMapper::processLocked(const std::shared_ptr<map::KeyFrame>& keyframe) 
                 map_->mapPointCount());
   if (queuedKeyFrames() == 0) fuseWithNeighbours(keyframe);
   if (queuedKeyFrames() == 0) {
-    if (params_.bundle_adjustment && map_->keyFrameCount() > 2) localBundleAdjustment(keyframe);
+    if (params_.bundle_adjustment && map_->keyFrameCountOf(keyframe->mapId()) > 2) {
+      localBundleAdjustment(keyframe);
+    }
     if (params_.keyframe_culling) cullKeyFrames(keyframe);
   }
   ++processed_;
@@ -246,12 +248,11 @@ void LocalMapper::localBundleAdjustment(const std::shared_ptr<map::KeyFrame>& ke
   std::vector<std::shared_ptr<map::KeyFrame>> local{keyframe};
   for (const auto& kf : keyframe->covisibles()) local.push_back(kf);
   std::unordered_map<map::Id, std::shared_ptr<map::KeyFrame>> in_problem;
-  const auto origin = map_->originKeyFrame();
   optimize::LocalBAProblem problem;
   problem.camera = camera_.intrinsics();
   for (const auto& kf : local) {
     in_problem[kf->id()] = kf;
-    problem.keyFrames.push_back({kf->id(), kf->T_c_w(), kf == origin});
+    problem.keyFrames.push_back({kf->id(), kf->T_c_w(), map_->isMapOrigin(*kf)});
   }
   std::vector<std::shared_ptr<map::MapPoint>> points;
   std::unordered_set<map::Id> seen;
@@ -303,9 +304,8 @@ void LocalMapper::localBundleAdjustment(const std::shared_ptr<map::KeyFrame>& ke
 }
 
 void LocalMapper::cullKeyFrames(const std::shared_ptr<map::KeyFrame>& keyframe) {
-  const auto origin = map_->originKeyFrame();
   for (const auto& candidate : keyframe->covisibles()) {
-    if (candidate == origin || candidate->isBad()) continue;
+    if (candidate->isBad() || map_->isOrigin(*candidate)) continue;
     const auto& f = candidate->features();
     const auto points = candidate->mapPoints();
     int total = 0;

@@ -46,8 +46,9 @@ TrackingOutcome Tracker::track(Frame frame) {
 
   bool ok = false;
   if (state_ == TrackingState::NotInitialized) {
-    ok = initialize();
+    ok = initialize();  // monocular: over several frames
     outcome.new_keyframe = ok;
+    outcome.new_map = ok && active_map_ != 0;
   } else {
     updateLastFrame();
     inliers_ = 0;
@@ -59,21 +60,26 @@ TrackingOutcome Tracker::track(Frame frame) {
             (last_.T_c_w && trackFromPose(*last_.T_c_w, params_.motion_search_radius * 2.0F))) &&
            trackLocalMap();
     } else {
-      // Lost: look for the map around the last pose we had (short blackouts), then anywhere
-      // in the map by place recognition (ORB-SLAM's Relocalization), then the last reference
-      // keyframe by descriptors (violent motion; what recovers without a vocabulary).
-      ok = last_.T_c_w && trackFromPose(*last_.T_c_w, params_.lost_search_radius) &&
-           trackLocalMap();
-      if (!ok) outcome.relocalized = ok = relocalize() && trackLocalMap();
-      if (!ok) ok = trackReferenceKeyFrame() && trackLocalMap();
+      ok = recoverWhileLost(outcome);
+      if (!ok && newMapDue()) {
+        if (resetDue()) {
+          spdlog::warn("frame {}: map {} lost with {} keyframes: reset", current_.index,
+                       reference_->mapId(), map_->keyFrameCountOf(reference_->mapId()));
+          map_->discardMap(reference_->mapId());
+        }
+        startNewMap();
+        outcome.new_map = outcome.new_keyframe = ok = initialize();
+      }
     }
-    if (state_ != TrackingState::NotInitialized)
+    if (state_ != TrackingState::NotInitialized) {
       state_ = ok ? TrackingState::Ok : TrackingState::Lost;
-    if (ok && needNewKeyFrame()) {
-      createNewKeyFrame();
-      outcome.new_keyframe = true;
+      if (ok && needNewKeyFrame()) {
+        createNewKeyFrame();
+        outcome.new_keyframe = true;
+      }
     }
   }
+  const bool map_started = ok && state_ == TrackingState::NotInitialized;
 
   if (ok) {
     if (last_.T_c_w && previous == TrackingState::Ok) {
@@ -81,14 +87,15 @@ TrackingOutcome Tracker::track(Frame frame) {
     } else {
       velocity_.reset();
     }
-    if (state_ == TrackingState::NotInitialized) state_ = TrackingState::Ok;
+    if (map_started) state_ = TrackingState::Ok;
+    lost_since_.reset();
     for (std::size_t i = 0; i < current_.size(); ++i) {
       if (current_.outliers[i]) current_.points[i] = nullptr;
     }
     if (!current_.reference) current_.reference = reference_;
     recorder_.recordTracked(current_.timestamp, *current_.T_c_w, current_.reference);
     // The map's first frame has no local-map inliers yet: the next tracked frame sets them.
-    if (previous == TrackingState::NotInitialized) {
+    if (map_started) {
       recent_inliers_.clear();
     } else {
       recent_inliers_.push_back(inliers_);
@@ -99,16 +106,23 @@ TrackingOutcome Tracker::track(Frame frame) {
     last_tracked_frame_ = current_.index;
     last_T_l_r_ = *current_.T_c_w * current_.reference->T_w_c();
     outcome.T_w_c = current_.T_c_w->inverse();
+    outcome.map = current_.reference->mapId();
   } else {
     if (previous == TrackingState::Ok) {
       spdlog::warn("tracking lost at frame {} (t = {:.3f} s): {} inliers", current_.index,
                    current_.timestamp, inliers_);
     }
+    if (!lost_since_ && previous != TrackingState::NotInitialized) {
+      lost_since_ = current_.timestamp;
+    }
     velocity_.reset();
     recorder_.recordLost(current_.timestamp);
     current_.T_c_w.reset();
   }
-  if (ok && previous == TrackingState::Lost) {
+  if (outcome.new_map) {
+    spdlog::info("new map {} started at frame {} (t = {:.3f} s)", active_map_, current_.index,
+                 current_.timestamp);
+  } else if (ok && previous == TrackingState::Lost) {
     spdlog::info("tracking recovered at frame {} (t = {:.3f} s)", current_.index,
                  current_.timestamp);
   }
@@ -126,6 +140,50 @@ TrackingOutcome Tracker::track(Frame frame) {
     last_ = std::move(current_);
   }
   return outcome;
+}
+
+// Lost: look for the map around the last pose we had (short blackouts), then anywhere in the
+// atlas by place recognition (ORB-SLAM's Relocalization), then the last reference keyframe by
+// descriptors (violent motion; what recovers without a vocabulary).
+bool Tracker::recoverWhileLost(TrackingOutcome& outcome) {
+  if (last_.T_c_w && trackFromPose(*last_.T_c_w, params_.lost_search_radius) && trackLocalMap())
+    return true;
+  if (relocalize() && trackLocalMap()) return outcome.relocalized = true;
+  return trackReferenceKeyFrame() && trackLocalMap();
+}
+
+// Lost for new_map_after_s on a frame that could start a map by itself (the dark frames of a
+// blackout cannot: the first lit frame still tries relocalization first).
+bool Tracker::newMapDue() const {
+  if (params_.new_map_after_s < 0 || !lost_since_) return false;
+  if (current_.timestamp - *lost_since_ < params_.new_map_after_s) return false;
+  if (camera_.bf <= 0.0) {
+    return static_cast<int>(current_.size()) >= params_.monocular.min_features;
+  }
+  const auto& depth = current_.features->depth;
+  return std::count_if(depth.begin(), depth.end(), [](float z) { return z > 0; }) >=
+         params_.min_initial_features;
+}
+
+bool Tracker::resetDue() const {
+  return camera_.bf <= 0.0 && reference_ && reference_->mapId() != map::kDiscardedMap &&
+         map_->keyFrameCountOf(reference_->mapId()) <
+             static_cast<std::size_t>(params_.monocular_reset_below_keyframes);
+}
+
+// The old map stays in the atlas (its frames keep their poses); tracking starts over in a new
+// one, as from the first frame.
+void Tracker::startNewMap() {
+  active_map_ = map_->newMapId();
+  state_ = TrackingState::NotInitialized;
+  reference_.reset();
+  last_keyframe_.reset();
+  local_keyframes_.clear();
+  local_points_.clear();
+  temporary_points_.clear();
+  velocity_.reset();
+  lost_since_.reset();
+  if (monocular_initializer_) monocular_initializer_->reset();
 }
 
 std::shared_ptr<map::MapPoint> Tracker::newPointFromDepth(
@@ -155,11 +213,13 @@ bool Tracker::initialize() {
   auto kf = std::make_shared<map::KeyFrame>(map_->nextKeyFrameId(), current_.index,
                                             current_.timestamp, *current_.T_c_w, current_.features,
                                             pyramid_, camera_.intrinsics());
+  kf->setMapId(active_map_);
   map_->addKeyFrame(kf);
   for (std::size_t i = 0; i < current_.size(); ++i) {
     if (depth[i] > 0) newPointFromDepth(i, kf);
   }
-  spdlog::info("map initialised at frame {} with {} points", current_.index, map_->mapPointCount());
+  spdlog::info("map {} initialised at frame {} with {} points", active_map_, current_.index,
+               with_depth);
   mapper_.insertKeyFrame(kf);
   reference_ = last_keyframe_ = kf;
   last_keyframe_frame_ = current_.index;
@@ -574,7 +634,8 @@ void Tracker::cullDynamicPoints() {
 }
 
 bool Tracker::needNewKeyFrame() const {
-  const std::size_t keyframes = map_->keyFrameCount();
+  const std::size_t keyframes =
+      map_->keyFrameCountOf(reference_ ? reference_->mapId() : active_map_);
   const int min_observations = keyframes <= 2 ? 2 : 3;
   const int reference_matches = reference_ ? reference_->trackedMapPoints(min_observations) : 0;
   const bool mapper_idle = mapper_.acceptsKeyFrames();
@@ -608,6 +669,8 @@ void Tracker::createNewKeyFrame() {
   auto kf = std::make_shared<map::KeyFrame>(map_->nextKeyFrameId(), current_.index,
                                             current_.timestamp, *current_.T_c_w, current_.features,
                                             pyramid_, camera_.intrinsics());
+  active_map_ = reference_->mapId();  // follows merges
+  kf->setMapId(active_map_);
   for (std::size_t i = 0; i < current_.size(); ++i) {
     const auto& point = current_.points[i];
     if (point && !current_.outliers[i] && point->observationCount() > 0) kf->setMapPoint(i, point);

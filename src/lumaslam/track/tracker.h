@@ -46,6 +46,18 @@ struct TrackerParams {
   MonocularInitParams monocular{};
   int min_initial_monocular_points = 50;  // after the initial bundle adjustment (ORB-SLAM3)
   DynamicMemoryParams dynamic_memory;     // points failing near recent people boxes
+  // Atlas (ORB-SLAM3): once tracking has been lost this long (seconds of frame time) and
+  // relocalization still fails on a frame that could start a map, a new map starts from it
+  // and tracking goes on there; the loop closer merges it when it sees an earlier map again.
+  // Negative: stay lost. ORB-SLAM3 waits 3 s; 1 s here, so that a camera covered for a few
+  // seconds is back at once when uncovered, while short dropouts (blur, a few dark frames)
+  // are still recovered in the same map.
+  double new_map_after_s = 1.0;
+  // Monocular: when a new map is due, a lost map with fewer keyframes than this is reset (its
+  // frames reported lost; ORB-SLAM3: 10) instead of kept: a map lost so soon after its two-view
+  // initialisation is likely wrong. RGB-D / stereo keep every map: their poses are true from
+  // the first frame.
+  int monocular_reset_below_keyframes = 10;
 };
 
 struct TrackingOutcome {
@@ -54,6 +66,8 @@ struct TrackingOutcome {
   int inliers = 0;
   bool new_keyframe = false;
   bool relocalized = false;  // recovered from Lost by the relocalizer (not the last-pose search)
+  bool new_map = false;      // this frame started a new map of the atlas
+  map::MapId map = 0;        // the map the frame was tracked in (when tracked)
 };
 
 class Tracker {
@@ -76,6 +90,10 @@ class Tracker {
 
  private:
   bool initialize();
+  bool recoverWhileLost(TrackingOutcome& outcome);
+  bool newMapDue() const;
+  bool resetDue() const;
+  void startNewMap();
   bool initializeMonocular();  // tracker_monocular.cpp
   bool createInitialMonocularMap(const InitialPair& pair);
   void updateLastFrame();
@@ -121,6 +139,8 @@ class Tracker {
   std::deque<int> recent_inliers_;  // local-map inliers of the last tracked frames; none yet
   int inlierReference() const;      // their median, 0 when there are none
   std::size_t last_tracked_frame_ = 0;
+  std::optional<double> lost_since_;  // timestamp of the first frame of the current loss
+  map::MapId active_map_ = 0;         // the map new keyframes start in (follows merges)
   DynamicPointMemory dynamic_memory_;
   TrajectoryRecorder recorder_;
   std::unique_ptr<MonocularInitializer> monocular_initializer_;

@@ -46,7 +46,8 @@ bool Tracker::createInitialMonocularMap(const InitialPair& pair) {
   if (static_cast<int>(kept.size()) < params_.min_initial_monocular_points) {
     spdlog::info("frame {}: initial map rejected, {} points (need {})", current_.index, kept.size(),
                  params_.min_initial_monocular_points);
-    map_->clear();  // nothing was published: this only rewinds the id counters
+    // Nothing was published: for the first map this only rewinds the id counters.
+    if (map_->keyFrameCount() == 0) map_->clear();
     return false;
   }
   // Scale the map so that the median scene depth of the first keyframe is 1.
@@ -58,6 +59,8 @@ bool Tracker::createInitialMonocularMap(const InitialPair& pair) {
   kf2->setPose(T_c2_w);
   for (const auto& point : kept) point->setPosition(point->position() * scale);
 
+  kf1->setMapId(active_map_);
+  kf2->setMapId(active_map_);
   map_->addKeyFrame(kf1);
   map_->addKeyFrame(kf2);
   for (const auto& point : kept) {
@@ -74,8 +77,8 @@ bool Tracker::createInitialMonocularMap(const InitialPair& pair) {
     auto point = kf2->mapPoint(i);
     if (point) current_.points[i] = std::move(point);
   }
-  spdlog::info("map initialised (monocular) at frames {}-{} with {} points", ref.index,
-               current_.index, kept.size());
+  spdlog::info("map {} initialised (monocular) at frames {}-{} with {} points", active_map_,
+               ref.index, current_.index, kept.size());
   mapper_.insertKeyFrame(kf1);
   mapper_.insertKeyFrame(kf2);
   reference_ = last_keyframe_ = kf2;

@@ -16,6 +16,12 @@ SE3 keyFramePose_T_c_w(const map::KeyFrame& keyframe) {
   return parent ? T_c_x * parent->T_c_w() : T_c_x;
 }
 
+map::MapId keyFrameMapId(const map::KeyFrame& keyframe) {
+  auto parent = keyframe.isBad() ? keyframe.parent() : nullptr;
+  while (parent && parent->isBad()) parent = parent->parent();
+  return parent ? parent->mapId() : keyframe.mapId();
+}
+
 void TrajectoryRecorder::recordTracked(double timestamp, const SE3& T_c_w,
                                        std::shared_ptr<map::KeyFrame> reference) {
   const SE3 T_c_r = T_c_w * reference->T_w_c();
@@ -28,12 +34,24 @@ void TrajectoryRecorder::recordLost(double timestamp) {
 
 Trajectory TrajectoryRecorder::frames() const {
   Trajectory trajectory;
+  for (auto& [id, frames] : framesByMap()) {
+    trajectory.insert(trajectory.end(), frames.begin(), frames.end());
+  }
+  std::sort(trajectory.begin(), trajectory.end(),
+            [](const auto& a, const auto& b) { return a.timestamp < b.timestamp; });
+  return trajectory;
+}
+
+std::map<map::MapId, Trajectory> TrajectoryRecorder::framesByMap() const {
+  std::map<map::MapId, Trajectory> by_map;
   for (const auto& record : records_) {
     if (!record.reference) continue;
+    const map::MapId map = keyFrameMapId(*record.reference);
+    if (map == map::kDiscardedMap) continue;  // a reset map: its frames count as lost
     const SE3 T_c_w = record.T_c_r * keyFramePose_T_c_w(*record.reference);
-    trajectory.push_back({record.timestamp, T_c_w.inverse()});
+    by_map[map].push_back({record.timestamp, T_c_w.inverse()});
   }
-  return trajectory;
+  return by_map;
 }
 
 std::size_t TrajectoryRecorder::trackedCount() const {

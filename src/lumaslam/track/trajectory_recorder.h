@@ -2,6 +2,7 @@
 // Every frame's pose stored relative to its reference keyframe (as ORB-SLAM does), so that the
 // exported trajectory benefits from later bundle adjustment and loop closing. Retired
 // keyframes are followed up their spanning-tree parents.
+#include <map>
 #include <memory>
 #include <vector>
 
@@ -15,8 +16,12 @@ class TrajectoryRecorder {
   void recordTracked(double timestamp, const SE3& T_c_w, std::shared_ptr<map::KeyFrame> reference);
   void recordLost(double timestamp);
 
-  // Tracked frames only (lost frames get no invented pose), T_w_c in the map frame.
+  // Tracked frames only (lost frames get no invented pose), T_w_c in the world of their map;
+  // frames of a reset map (map::kDiscardedMap) are left out.
   Trajectory frames() const;
+  // The same per map of the atlas (the map each frame's reference keyframe is in now, so that
+  // frames of merged maps are together, in the joined map's world).
+  std::map<map::MapId, Trajectory> framesByMap() const;
   std::size_t trackedCount() const;
   std::size_t lostCount() const;
 
@@ -31,6 +36,8 @@ class TrajectoryRecorder {
 
 // Current world pose of a keyframe, through its parents if it was retired.
 SE3 keyFramePose_T_c_w(const map::KeyFrame& keyframe);
+// Its map, through its parents if it was retired.
+map::MapId keyFrameMapId(const map::KeyFrame& keyframe);
 
 // Keyframes of a map as a trajectory (T_w_c), sorted by timestamp.
 Trajectory keyFrameTrajectory(const std::vector<std::shared_ptr<map::KeyFrame>>& keyframes);
