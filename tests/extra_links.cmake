@@ -13,7 +13,7 @@ foreach(loop_test test_loop_vocabulary test_loop_database test_loop_place_recogn
   endif()
 endforeach()
 target_link_libraries(test_track_monocular_init PRIVATE lumaslam_synth)
-foreach(loop_test test_loop_relocalizer test_loop_closer)
+foreach(loop_test test_loop_relocalizer test_loop_closer test_loop_map_merge)
   if(TARGET ${loop_test})
     target_link_libraries(${loop_test} PRIVATE lumaslam_synth lumaslam_track)
   endif()

@@ -30,14 +30,17 @@ inline track::Frame buildRgbdFrame(const track::FrameBuilder& builder,
   return builder.build(static_cast<std::size_t>(index), frame.timestamp(), gray, frame.cam0.depth);
 }
 
-// Adds a keyframe at `T_w_c` with a new map point for every feature measured 0.1-8 m away.
+// Adds a keyframe at `T_w_c` (to map `map_id` of the atlas) with a new map point for every
+// feature measured 0.1-8 m away.
 inline std::shared_ptr<map::KeyFrame> addKeyFrameWithPoints(map::Map& map,
                                                             const track::FrameBuilder& builder,
                                                             const track::Frame& frame,
-                                                            const SE3& T_w_c) {
+                                                            const SE3& T_w_c,
+                                                            map::MapId map_id = 0) {
   auto keyframe = std::make_shared<map::KeyFrame>(map.nextKeyFrameId(), frame.index,
                                                   frame.timestamp, T_w_c.inverse(), frame.features,
                                                   builder.pyramid(), builder.camera().intrinsics());
+  keyframe->setMapId(map_id);
   map.addKeyFrame(keyframe);
   for (std::size_t i = 0; i < frame.size(); ++i) {
     const float z = frame.features->depth[i];

@@ -19,11 +19,12 @@
 namespace lumaslam::test {
 
 struct LoopInput {
-  LoopInput(int lap_frames, int second_lap_frames, std::uint64_t seed)
+  LoopInput(int lap_frames, int second_lap_frames, std::uint64_t seed,
+            const std::string& preset = "loop-stereo")
       : lap_frames(lap_frames),
         second_lap_frames(second_lap_frames),
-        lap(synth::findPreset("loop-stereo"), lap_frames, seed),
-        second_lap(synth::findPreset("loop-stereo"), lap_frames + 1, seed) {}
+        lap(synth::findPreset(preset), lap_frames, seed),
+        second_lap(synth::findPreset(preset), lap_frames + 1, seed) {}
   int lap_frames;
   int second_lap_frames;
   synth::SequenceRenderer lap;

@@ -62,6 +62,15 @@ int longestLostRun(const std::filesystem::path& out) {
   return longest;
 }
 
+int countTrajectoryLines(const std::filesystem::path& file) {
+  std::ifstream in(file);
+  int lines = 0;
+  for (std::string line; std::getline(in, line);) {
+    if (!line.empty() && line[0] != '#') ++lines;
+  }
+  return lines;
+}
+
 struct RealRun {
   int stride;
   double max_ate_m;
@@ -94,6 +103,16 @@ TEST_P(CliRunRealRgbd, TracksEveryFrameWithDefaultFlags) {
   EXPECT_GE(summary["tracked"].get<int>(), frames - 10) << run.output;
   ASSERT_TRUE(summary.contains("evaluation")) << run.output;
   EXPECT_LT(summary["evaluation"]["ate"]["rmse"].get<double>(), max_ate_m);
+  // The atlas in the summary: every tracked frame in one of its maps, the main one being
+  // trajectory.txt (the others, if tracking ever started one, in trajectory_map<ID>.txt).
+  ASSERT_TRUE(summary.contains("maps")) << run.output;
+  int in_maps = 0;
+  for (const auto& map : summary["maps"]) {
+    in_maps += map["frames"].get<int>();
+    EXPECT_EQ(countTrajectoryLines(out / map["trajectory"].get<std::string>()),
+              map["frames"].get<int>());
+  }
+  EXPECT_EQ(in_maps, summary["tracked"].get<int>());
 }
 
 INSTANTIATE_TEST_SUITE_P(SevenScenes, CliRunRealRgbd,
