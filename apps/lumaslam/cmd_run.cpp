@@ -16,6 +16,7 @@ const bool registered = registerCommand(
       auto repeats = std::make_shared<int>(1);
       auto detector = std::make_shared<std::string>();
       auto vocabulary = std::make_shared<std::string>();
+      auto on_bad_frame = std::make_shared<std::string>("skip");
       cmd.add_option("--dataset", options->dataset,
                      "tum:PATH, euroc:PATH, kitti:PATH, folder:PATH or video:FILE (the settings "
                      "say mono, stereo or RGB-D), e.g. a dataset or the output of `lumaslam synth`")
@@ -38,10 +39,18 @@ const bool registered = registerCommand(
                      "ORBvoc.txt), or 'none'; default: the vocabulary shipped with lumaslam");
       cmd.add_flag("--no-loop-closing", options->no_loop_closing,
                    "Keep relocalization but do not close loops (overrides Loop.closing)");
+      cmd.add_option("--on-bad-frame", *on_bad_frame,
+                     "A frame that cannot be read or tracked (unreadable image, wrong size, "
+                     "missing depth): skip it with a warning, or stop there; what was tracked is "
+                     "written either way")
+          ->check(CLI::IsMember({"skip", "stop"}))
+          ->capture_default_str();
       cmd.add_option("--repeat", *repeats,
                      "Run N times into OUT/run_K and report the min/median/max spread")
           ->check(CLI::PositiveNumber);
-      return [options, max_frames, enhance, detector, repeats, vocabulary] {
+      return [options, max_frames, enhance, detector, repeats, vocabulary, on_bad_frame] {
+        options->on_bad_frame =
+            *on_bad_frame == "stop" ? RunOptions::BadFrame::Stop : RunOptions::BadFrame::Skip;
         if (*max_frames > 0) options->max_frames = *max_frames;
         if (!enhance->empty()) options->enhance_preset = *enhance;
         if (!detector->empty()) options->detector = *detector;

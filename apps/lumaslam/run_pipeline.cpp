@@ -14,10 +14,12 @@
 #include "lumaslam/eval/evaluation.h"
 #include "lumaslam/eval/trajectory_plot.h"
 #include "lumaslam/io/dataset_reader.h"
+#include "lumaslam/io/output_file.h"
 #include "lumaslam/io/settings.h"
 #include "lumaslam/io/trajectory_io.h"
 #include "lumaslam/loop/loop_closer.h"
 #include "lumaslam/system.h"
+#include "stop_signal.h"
 
 namespace lumaslam::cli {
 namespace {
@@ -52,6 +54,176 @@ nlohmann::json writeMapTrajectories(const System& system, const std::filesystem:
   return maps;
 }
 
+// Files an earlier run left in `out`: a run replaces them all, so that a folder never mixes
+// the results of two runs (docs/results.md).
+void removeEarlierOutputs(const std::filesystem::path& out) {
+  std::error_code ec;
+  for (const char* name : {"trajectory.txt", "keyframes.txt", "timing.csv", "summary.json",
+                           "evaluation.svg", "repeatability.json"}) {
+    if (std::filesystem::is_regular_file(out / name, ec)) std::filesystem::remove(out / name, ec);
+  }
+  for (const auto& entry : std::filesystem::directory_iterator(out, ec)) {
+    const std::string name = entry.path().filename().string();
+    if (entry.is_regular_file(ec) && name.starts_with("trajectory_map")) {
+      std::filesystem::remove(entry.path(), ec);
+    }
+  }
+}
+
+struct SkippedFrame {
+  std::string what;  // the file and the problem
+};
+
+struct FrameLoop {
+  std::size_t frames = 0;  // tracked or lost (skipped frames not counted)
+  std::size_t tracked = 0;
+  std::size_t relocalized = 0;
+  std::vector<SkippedFrame> skipped;
+  std::vector<double> totals;
+  double dropped_sum = 0.0;
+  double wait_sum = 0.0;
+  std::string status = "complete";  // "partial" (stopped by a signal), "stopped at a bad frame"
+  int exit_code = 0;
+};
+
+void writeTimingRow(std::ostream& timing, const io::FrameData& frame, const FrameResult& result) {
+  const auto& t = result.timing;
+  timing << frame.index << ',' << fmt::format("{:.6f}", frame.timestamp) << ','
+         << track::toString(result.outcome.state) << ',' << result.outcome.inliers << ','
+         << fmt::format("{:.3f},{:.3f},{:.3f},{:.3f},{:.3f}", t.enhance, t.features, t.tracking,
+                        t.mapping, t.total)
+         << fmt::format(",{:.3f},{:.3f},{},{},", t.detection_wait, t.detection,
+                        result.dynamic_boxes.size(), result.dropped_features.size())
+         << (result.outcome.T_w_c ? std::to_string(result.outcome.map) : std::string()) << '\n';
+}
+
+// Returns false when the loop must stop here (a bad frame with --on-bad-frame stop).
+bool recordBadFrame(FrameLoop& loop, std::string what, const RunOptions& options) {
+  if (options.on_bad_frame == RunOptions::BadFrame::Stop) {
+    spdlog::error("{}: stopping (--on-bad-frame stop); the frames tracked so far are written",
+                  what);
+    loop.skipped.push_back({std::move(what)});
+    loop.status = "stopped at a bad frame";
+    loop.exit_code = 1;
+    return false;
+  }
+  spdlog::warn("skipping a frame: {}", what);
+  loop.skipped.push_back({std::move(what)});
+  return true;
+}
+
+// Reads and tracks every frame, one timing.csv row each, until the dataset ends, a signal
+// asks to stop, or a bad frame stops it.
+FrameLoop trackFrames(io::DatasetReader& reader, System& system, io::OutputFile& timing,
+                      const RunOptions& options, const StopOnSignal& stop) {
+  constexpr std::size_t kMaxUnreadableInARow = 100;  // a reader that cannot go on
+  const bool progress = isatty(STDERR_FILENO) != 0;
+  FrameLoop loop;
+  std::size_t unreadable_in_a_row = 0;
+  while (!stop.requested()) {
+    std::optional<io::FrameData> frame;
+    try {
+      frame = reader.next();
+    } catch (const Error& e) {
+      if (!recordBadFrame(loop, e.what(), options)) break;
+      if (++unreadable_in_a_row >= kMaxUnreadableInARow) {
+        spdlog::error("{} unreadable frames in a row: stopping", unreadable_in_a_row);
+        loop.status = "stopped at a bad frame";
+        loop.exit_code = 1;
+        break;
+      }
+      continue;
+    }
+    if (!frame) break;
+    unreadable_in_a_row = 0;
+    FrameResult result;
+    try {
+      result = system.track(toSensorFrame(*frame));
+    } catch (const Error& e) {
+      if (!recordBadFrame(loop, fmt::format("{}: {}", frame->image_path.string(), e.what()),
+                          options)) {
+        break;
+      }
+      continue;
+    }
+    writeTimingRow(timing.stream(), *frame, result);
+    timing.flush();
+    loop.dropped_sum += static_cast<double>(result.dropped_features.size());
+    loop.wait_sum += result.timing.detection_wait;
+    loop.totals.push_back(result.timing.total);
+    ++loop.frames;
+    if (result.outcome.state == track::TrackingState::Ok) ++loop.tracked;
+    if (result.outcome.relocalized) ++loop.relocalized;
+    if (progress) {
+      std::fprintf(stderr, "\rframe %zu/%zu  %s  %.1f ms   ", loop.frames, reader.size(),
+                   track::toString(result.outcome.state), result.timing.total);
+    }
+  }
+  if (progress) std::fprintf(stderr, "\n");
+  if (stop.requested()) {
+    spdlog::warn("{}: stopped after {} frames; writing what was tracked (partial)", stop.name(),
+                 loop.frames);
+    loop.status = "partial";
+    loop.exit_code = stop.exitCode();
+  }
+  return loop;
+}
+
+nlohmann::json summaryOf(const RunOptions& options, const std::filesystem::path& settings_path,
+                         const System& system, const FrameLoop& loop, nlohmann::json maps) {
+  double mean = 0.0;
+  for (double v : loop.totals) mean += v / static_cast<double>(loop.totals.size());
+  std::size_t loops = 0;
+  std::size_t merges = 0;
+  if (system.loopCloser()) {
+    for (const auto& closed : system.loopCloser()->closedLoops()) {
+      ++(closed.merged_map ? merges : loops);
+    }
+  }
+  nlohmann::json skipped = nlohmann::json::array();
+  for (const auto& frame : loop.skipped) skipped.push_back(frame.what);
+  const double frames = static_cast<double>(std::max<std::size_t>(loop.frames, 1));
+  nlohmann::json summary = {{"dataset", options.dataset},
+                            {"settings", settings_path.string()},
+                            {"status", loop.status},
+                            {"frames", loop.frames},
+                            {"tracked", loop.tracked},
+                            {"lost", loop.frames - loop.tracked},
+                            {"relocalized", loop.relocalized},
+                            {"skipped_frames", loop.skipped.size()},
+                            {"skipped", skipped},
+                            {"keyframes", system.keyFrameCount()},
+                            {"vocabulary", system.vocabularyDescription()},
+                            {"loops", loops},
+                            {"merges", merges},
+                            {"maps", std::move(maps)},
+                            {"map_points", system.mapPointCount()},
+                            {"ms_per_frame", {{"mean", mean}, {"median", median(loop.totals)}}}};
+  summary["detector"] = {{"name", system.detectorDescription()},
+                         {"dropped_features_per_frame", loop.dropped_sum / frames},
+                         {"wait_ms_per_frame", loop.wait_sum / frames}};
+  return summary;
+}
+
+// Evaluation against the dataset's ground truth, when it has one, into the summary.
+void evaluateAgainstGroundTruth(io::DatasetReader& reader, const io::Settings& settings,
+                                const Trajectory& trajectory, const std::filesystem::path& out,
+                                nlohmann::json& summary) {
+  const auto ground_truth = reader.groundTruth();
+  if (ground_truth.empty() || trajectory.size() < 3) return;
+  try {
+    eval::EvaluationOptions eval_options;
+    // Monocular scale is unobservable: align with a similarity (ORB-SLAM's evaluation).
+    if (settings.sensor == io::SensorType::Monocular) eval_options.align = eval::AlignMode::Sim3;
+    const auto report = eval::evaluate(trajectory, ground_truth, eval_options);
+    summary["evaluation"] = eval::toJson(report);
+    eval::writeEvaluationPlot(out / "evaluation.svg", report);
+    std::printf("%s", eval::formatTable(report).c_str());
+  } catch (const Error& e) {
+    spdlog::warn("evaluation against ground truth skipped: {}", e.what());
+  }
+}
+
 }  // namespace
 
 int runPipeline(const RunOptions& options) {
@@ -69,7 +241,8 @@ int runPipeline(const RunOptions& options) {
     fail("{}: the settings are stereo but dataset {} has no right images", settings_path.string(),
          options.dataset);
   }
-  std::filesystem::create_directories(options.out);
+  io::requireWritableFolder(options.out);
+  removeEarlierOutputs(options.out);
 
   SystemOptions system_options;
   system_options.enhance_preset = options.enhance_preset;
@@ -79,91 +252,36 @@ int runPipeline(const RunOptions& options) {
   if (options.no_loop_closing) system_options.loop_closing = false;
   System system(settings, system_options);
 
-  std::ofstream timing(options.out / "timing.csv");
-  timing << "frame,timestamp,state,inliers,enhance_ms,features_ms,tracking_ms,mapping_ms,total_ms,"
-            "detection_wait_ms,detection_ms,boxes,dropped_features,map\n";
-  const bool progress = isatty(STDERR_FILENO) != 0;
-  std::vector<double> totals;
-  std::size_t tracked = 0;
-  std::size_t relocalized = 0;
-  std::size_t frames = 0;
-  double dropped_sum = 0.0;
-  double wait_sum = 0.0;
-  while (auto frame = reader->next()) {
-    const auto result = system.track(toSensorFrame(*frame));
-    const auto& t = result.timing;
-    timing << frame->index << ',' << fmt::format("{:.6f}", frame->timestamp) << ','
-           << track::toString(result.outcome.state) << ',' << result.outcome.inliers << ','
-           << fmt::format("{:.3f},{:.3f},{:.3f},{:.3f},{:.3f}", t.enhance, t.features, t.tracking,
-                          t.mapping, t.total)
-           << fmt::format(",{:.3f},{:.3f},{},{},", t.detection_wait, t.detection,
-                          result.dynamic_boxes.size(), result.dropped_features.size())
-           << (result.outcome.T_w_c ? std::to_string(result.outcome.map) : std::string()) << '\n';
-    dropped_sum += static_cast<double>(result.dropped_features.size());
-    wait_sum += t.detection_wait;
-    totals.push_back(t.total);
-    ++frames;
-    if (result.outcome.state == track::TrackingState::Ok) ++tracked;
-    if (result.outcome.relocalized) ++relocalized;
-    if (progress) {
-      std::fprintf(stderr, "\rframe %zu/%zu  %s  %.1f ms   ", frames, reader->size(),
-                   track::toString(result.outcome.state), t.total);
-    }
+  io::OutputFile timing(options.out / "timing.csv");
+  timing.stream()
+      << "frame,timestamp,state,inliers,enhance_ms,features_ms,tracking_ms,mapping_ms,total_ms,"
+         "detection_wait_ms,detection_ms,boxes,dropped_features,map\n";
+  const StopOnSignal stop;
+  const FrameLoop loop = trackFrames(*reader, system, timing, options, stop);
+  if (loop.frames == 0 && loop.exit_code == 0) {
+    fail("{}: the dataset delivered no frames", options.dataset);
   }
-  if (progress) std::fprintf(stderr, "\n");
-  if (frames == 0) fail("{}: the dataset delivered no frames", options.dataset);
   system.shutdown();
 
+  // Results, each file complete or not written (io::OutputFile): trajectories first.
   const auto trajectory = system.frameTrajectory();
   io::writeTrajectory(options.out / "trajectory.txt", trajectory);
   io::writeTrajectory(options.out / "keyframes.txt", system.keyFrameTrajectory());
-  const nlohmann::json maps = writeMapTrajectories(system, options.out);
-
-  double mean = 0.0;
-  for (double v : totals) mean += v / static_cast<double>(totals.size());
-  std::size_t loops = 0;
-  std::size_t merges = 0;
-  if (system.loopCloser()) {
-    for (const auto& closed : system.loopCloser()->closedLoops())
-      ++(closed.merged_map ? merges : loops);
-  }
-  nlohmann::json summary = {{"dataset", options.dataset},
-                            {"settings", settings_path.string()},
-                            {"frames", frames},
-                            {"tracked", tracked},
-                            {"lost", frames - tracked},
-                            {"relocalized", relocalized},
-                            {"keyframes", system.keyFrameCount()},
-                            {"vocabulary", system.vocabularyDescription()},
-                            {"loops", loops},
-                            {"merges", merges},
-                            {"maps", maps},
-                            {"map_points", system.mapPointCount()},
-                            {"ms_per_frame", {{"mean", mean}, {"median", median(totals)}}}};
-  summary["detector"] = {{"name", system.detectorDescription()},
-                         {"dropped_features_per_frame", dropped_sum / static_cast<double>(frames)},
-                         {"wait_ms_per_frame", wait_sum / static_cast<double>(frames)}};
-  std::printf("%s: %zu frames, %zu tracked, %zu lost, %zu keyframes, %.1f ms/frame median\n",
-              options.dataset.c_str(), frames, tracked, frames - tracked, system.keyFrameCount(),
-              median(totals));
-
-  const auto ground_truth = reader->groundTruth();
-  if (!ground_truth.empty() && trajectory.size() >= 3) {
-    try {
-      eval::EvaluationOptions eval_options;
-      // Monocular scale is unobservable: align with a similarity (ORB-SLAM's evaluation).
-      if (settings.sensor == io::SensorType::Monocular) eval_options.align = eval::AlignMode::Sim3;
-      const auto report = eval::evaluate(trajectory, ground_truth, eval_options);
-      summary["evaluation"] = eval::toJson(report);
-      eval::writeEvaluationPlot(options.out / "evaluation.svg", report);
-      std::printf("%s", eval::formatTable(report).c_str());
-    } catch (const Error& e) {
-      spdlog::warn("evaluation against ground truth skipped: {}", e.what());
-    }
-  }
-  std::ofstream(options.out / "summary.json") << summary.dump(2) << '\n';
+  auto summary =
+      summaryOf(options, settings_path, system, loop, writeMapTrajectories(system, options.out));
+  timing.commit();
+  std::printf(
+      "%s: %zu frames, %zu tracked, %zu lost, %zu skipped, %zu keyframes, %.1f ms/frame "
+      "median%s\n",
+      options.dataset.c_str(), loop.frames, loop.tracked, loop.frames - loop.tracked,
+      loop.skipped.size(), system.keyFrameCount(), median(loop.totals),
+      loop.status == "complete" ? "" : (" (" + loop.status + ")").c_str());
+  evaluateAgainstGroundTruth(*reader, settings, trajectory, options.out, summary);
+  io::OutputFile summary_file(options.out / "summary.json");
+  summary_file.stream() << summary.dump(2) << '\n';
+  summary_file.commit();
   std::printf("results in %s\n", options.out.string().c_str());
-  return 0;
+  return loop.exit_code;
 }
 
 }  // namespace lumaslam::cli

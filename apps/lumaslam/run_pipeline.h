@@ -18,9 +18,15 @@ struct RunOptions {
   bool sequential = false;
   std::optional<std::filesystem::path> vocabulary;  // overrides Loop.vocabulary
   bool no_loop_closing = false;                     // overrides Loop.closing
+  // A frame that cannot be read or tracked (unreadable image, wrong size, missing depth):
+  // skip it with a warning (default), or stop there; either way what was tracked is written.
+  enum class BadFrame { Skip, Stop };
+  BadFrame on_bad_frame = BadFrame::Skip;
 };
 
-// Returns the process exit code; throws lumaslam::Error for bad input.
+// Returns the process exit code: 0, 1 when stopped at a bad frame, 128 + signal when stopped
+// by SIGINT / SIGTERM (results written and marked partial). Throws lumaslam::Error for bad
+// input found before the first frame and for output that cannot be written.
 int runPipeline(const RunOptions& options);
 
 }  // namespace lumaslam::cli

@@ -1,5 +1,7 @@
 #include "lumaslam/io/trajectory_io.h"
 
+#include "lumaslam/io/output_file.h"
+
 #include <cmath>
 #include <fstream>
 
@@ -82,21 +84,6 @@ SE3 parseKittiLine(const std::filesystem::path& file, const TextLine& line) {
   T.linear() = nearestRotation(P.leftCols<3>(), file, line);
   T.translation() = P.col(3);
   return T;
-}
-
-std::ofstream openForWriting(const std::filesystem::path& file) {
-  if (file.has_parent_path()) {
-    std::error_code ec;
-    std::filesystem::create_directories(file.parent_path(), ec);
-  }
-  std::ofstream stream(file);
-  if (!stream) fail("{}: cannot open for writing", file.string());
-  return stream;
-}
-
-void finishWriting(std::ofstream& stream, const std::filesystem::path& file) {
-  stream.close();
-  if (!stream) fail("{}: write error", file.string());
 }
 
 Eigen::Quaterniond rotationOf(const SE3& T) {
@@ -200,7 +187,8 @@ Trajectory readTrajectory(const std::filesystem::path& file, TrajectoryFormat fo
 void writeTrajectory(const std::filesystem::path& file, const Trajectory& trajectory,
                      TrajectoryFormat format, const std::filesystem::path& kitti_times) {
   if (format == TrajectoryFormat::Auto) format = TrajectoryFormat::Tum;
-  auto stream = openForWriting(file);
+  OutputFile out(file);
+  auto& stream = out.stream();
   // "{}" prints the shortest decimal that reads back to the same double.
   switch (format) {
     case TrajectoryFormat::Tum:
@@ -232,12 +220,12 @@ void writeTrajectory(const std::filesystem::path& file, const Trajectory& trajec
       }
       break;
   }
-  finishWriting(stream, file);
+  out.commit();
 
   if (format == TrajectoryFormat::Kitti && !kitti_times.empty()) {
-    auto times = openForWriting(kitti_times);
-    for (const auto& pose : trajectory) times << fmt::format("{:.9f}\n", pose.timestamp);
-    finishWriting(times, kitti_times);
+    OutputFile times(kitti_times);
+    for (const auto& pose : trajectory) times.stream() << fmt::format("{:.9f}\n", pose.timestamp);
+    times.commit();
   }
 }
 
