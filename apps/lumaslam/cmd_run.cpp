@@ -39,6 +39,9 @@ const bool registered = registerCommand(
                      "ORBvoc.txt), or 'none'; default: the vocabulary shipped with lumaslam");
       cmd.add_flag("--no-loop-closing", options->no_loop_closing,
                    "Keep relocalization but do not close loops (overrides Loop.closing)");
+      cmd.add_flag("--strict-settings", options->strict_settings,
+                   "Fail on settings keys nothing reads (typos); default: a warning naming the "
+                   "closest known key");
       cmd.add_option("--on-bad-frame", *on_bad_frame,
                      "A frame that cannot be read or tracked (unreadable image, wrong size, "
                      "missing depth): skip it with a warning, or stop there; what was tracked is "

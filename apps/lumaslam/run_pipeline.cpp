@@ -250,6 +250,7 @@ int runPipeline(const RunOptions& options) {
   if (options.sequential) system_options.sequential = true;
   system_options.vocabulary = options.vocabulary;
   if (options.no_loop_closing) system_options.loop_closing = false;
+  system_options.strict_settings = options.strict_settings;
   System system(settings, system_options);
 
   io::OutputFile timing(options.out / "timing.csv");

@@ -51,6 +51,16 @@ feature::OrbSettings orbSettingsFrom(const io::Settings& settings) {
   return orb;
 }
 
+// Run once every part of the System has read its keys.
+void checkUnknownKeys(const core::SettingsFile& file, bool strict) {
+  for (const auto& [key, suggestion] : core::unknownKeys(file)) {
+    const std::string hint =
+        suggestion.empty() ? "" : fmt::format("; did you mean '{}'?", suggestion);
+    if (strict) fail("{}: unknown key '{}'{} (--strict-settings)", file.origin(), key, hint);
+    spdlog::warn("{}: unknown key '{}' is ignored{}", file.origin(), key, hint);
+  }
+}
+
 }  // namespace
 
 System::System(const io::Settings& settings, const SystemOptions& options)
@@ -165,6 +175,7 @@ System::System(const io::Settings& settings, const SystemOptions& options)
     tracker_->setRelocalizer(
         std::make_shared<BowRelocalizer>(places_, map_, camera, frame_builder_->pyramid()));
   }
+  if (settings_.file) checkUnknownKeys(*settings_.file, options.strict_settings);
 }
 
 System::~System() {

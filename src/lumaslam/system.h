@@ -51,6 +51,9 @@ struct SystemOptions {
   // "none". Neither set: the default vocabulary (loop/vocabulary_choice.h).
   std::optional<std::filesystem::path> vocabulary;
   std::optional<bool> loop_closing;  // overrides Loop.closing (needs a vocabulary)
+  // Settings keys nothing reads (typos, e.g. Enhancement.presett) are a warning naming the
+  // closest known key; with strict_settings an Error.
+  bool strict_settings = false;
 };
 
 struct FrameTiming {  // milliseconds

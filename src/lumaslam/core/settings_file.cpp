@@ -1,5 +1,8 @@
 #include "lumaslam/core/settings_file.h"
 
+#include <algorithm>
+#include <cctype>
+
 #include <cmath>
 #include <fstream>
 #include <sstream>
@@ -75,7 +78,8 @@ SettingsFile::SettingsFile(cv::FileStorage storage, std::string origin)
 
 SettingsFile SettingsFile::open(const std::filesystem::path& path) {
   std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec)) fail("{}: settings file not found", path.string());
+  if (!std::filesystem::is_regular_file(path, ec))
+    fail("{}: settings file not found", path.string());
   std::ifstream in(path);
   std::stringstream text;
   text << in.rdbuf();
@@ -101,6 +105,10 @@ SettingsFile SettingsFile::fromString(const std::string& yaml, const std::string
 
 cv::FileNode SettingsFile::node(std::string_view key) const {
   const std::string k(key);
+  {
+    std::lock_guard lock(asked_->mutex);
+    asked_->keys.insert(k);
+  }
   cv::FileNode n = storage_[k];
   if (!n.empty() || k.find('.') == std::string::npos) return n;
   n = storage_.root();
@@ -119,7 +127,95 @@ bool SettingsFile::has(std::string_view key) const {
   return !n.empty() && !n.isNone();
 }
 
-std::vector<std::string> SettingsFile::keys() const { return storage_.root().keys(); }
+std::vector<std::string> SettingsFile::keys() const {
+  return storage_.root().keys();
+}
+
+std::set<std::string> SettingsFile::askedKeys() const {
+  std::lock_guard lock(asked_->mutex);
+  return asked_->keys;
+}
+
+namespace {
+
+bool isMatrix(const cv::FileNode& n) {
+  return n.isMap() && !n["data"].empty() && !n["rows"].empty();
+}
+
+void flattenKeys(const cv::FileNode& n, const std::string& prefix,
+                 const std::set<std::string>& asked, std::vector<std::string>& out) {
+  for (const auto& key : n.keys()) {
+    const std::string flat = prefix.empty() ? key : prefix + "." + key;
+    const cv::FileNode child = n[key];
+    if (child.isMap() && !isMatrix(child) && !asked.contains(flat)) {
+      flattenKeys(child, flat, asked, out);
+    } else if (!asked.contains(flat)) {
+      out.push_back(flat);
+    }
+  }
+}
+
+std::size_t editDistance(std::string_view a, std::string_view b) {
+  std::vector<std::size_t> row(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    std::size_t diagonal = row[0];
+    row[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const std::size_t above = row[j];
+      const bool same = std::tolower(a[i - 1]) == std::tolower(b[j - 1]);
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (same ? 0 : 1)});
+      diagonal = above;
+    }
+  }
+  return row[b.size()];
+}
+
+// Keys of ORB-SLAM3 and of our generator that lumaslam reads no value from on purpose.
+constexpr std::string_view kIgnoredPrefixes[] = {"Viewer.",
+                                                 "IMU.",
+                                                 "Synth.",
+                                                 "Dataset.",
+                                                 "LEFT.",
+                                                 "RIGHT.",
+                                                 "Camera.type",
+                                                 "Camera2.type",
+                                                 "System.LoadAtlasFromFile",
+                                                 "System.SaveAtlasToFile",
+                                                 "System.thFarPoints",
+                                                 "Camera.newWidth",
+                                                 "Camera.newHeight",
+                                                 "Stereo.b",
+                                                 "Camera.bf"};
+
+}  // namespace
+
+std::vector<std::string> SettingsFile::unaskedKeys() const {
+  std::vector<std::string> keys;
+  flattenKeys(storage_.root(), "", askedKeys(), keys);
+  return keys;
+}
+
+std::vector<UnknownKey> unknownKeys(const SettingsFile& file) {
+  const auto asked = file.askedKeys();
+  std::vector<UnknownKey> unknown;
+  for (const auto& key : file.unaskedKeys()) {
+    const bool ignored = std::any_of(std::begin(kIgnoredPrefixes), std::end(kIgnoredPrefixes),
+                                     [&](std::string_view p) { return key.starts_with(p); });
+    if (ignored) continue;
+    UnknownKey entry{key, {}};
+    std::size_t best = std::max<std::size_t>(2, key.size() / 5) + 1;
+    for (const auto& candidate : asked) {
+      const std::size_t d = editDistance(key, candidate);
+      if (d < best) {
+        best = d;
+        entry.suggestion = candidate;
+      }
+    }
+    unknown.push_back(std::move(entry));
+  }
+  return unknown;
+}
 
 void SettingsFile::invalid(std::string_view key, std::string_view why) const {
   fail("{}: key '{}': {}", origin_, key, why);
@@ -157,7 +253,8 @@ std::optional<cv::Mat> SettingsFile::findMatrix(std::string_view key, int rows, 
       m.release();
     }
   } else if (auto values = convert<std::vector<double>>(n)) {
-    if (static_cast<int>(values->size()) == rows * cols) m = cv::Mat(*values, true).reshape(1, rows);
+    if (static_cast<int>(values->size()) == rows * cols)
+      m = cv::Mat(*values, true).reshape(1, rows);
   }
   if (m.empty()) invalid(key, fmt::format("expected a {}x{} opencv-matrix", rows, cols));
   if (m.rows != rows || m.cols != cols) {
@@ -170,11 +267,12 @@ std::optional<cv::Mat> SettingsFile::findMatrix(std::string_view key, int rows, 
 
 cv::Mat SettingsFile::getMatrix(std::string_view key, int rows, int cols) const {
   auto m = findMatrix(key, rows, cols);
-  if (!m) fail("{}: key '{}' is missing (expected a {}x{} opencv-matrix)", origin_, key, rows, cols);
+  if (!m)
+    fail("{}: key '{}' is missing (expected a {}x{} opencv-matrix)", origin_, key, rows, cols);
   return *m;
 }
 
-#define LUMASLAM_SETTINGS_INSTANTIATE(T)                                     \
+#define LUMASLAM_SETTINGS_INSTANTIATE(T)                                   \
   template std::optional<T> SettingsFile::find<T>(std::string_view) const; \
   template T SettingsFile::get<T>(std::string_view) const;                 \
   template T SettingsFile::get<T>(std::string_view, T) const;

@@ -4,7 +4,10 @@
 // looked up as a nested path (Camera: {fx: ...}). Every failure names file, key and the
 // expected type.
 #include <filesystem>
+#include <memory>
+#include <mutex>
 #include <optional>
+#include <set>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -39,13 +42,33 @@ class SettingsFile {
 
   [[noreturn]] void invalid(std::string_view key, std::string_view why) const;
 
+  // Every key asked for so far (found or not), in flat form.
+  std::set<std::string> askedKeys() const;
+  // Keys of the file (nested maps flattened to "A.b"; matrices are values) that nothing has
+  // asked for: typos and keys of other programs.
+  std::vector<std::string> unaskedKeys() const;
+
  private:
   SettingsFile(cv::FileStorage storage, std::string origin);
   cv::FileNode node(std::string_view key) const;
 
   cv::FileStorage storage_;
   std::string origin_;
+  struct AskedKeys {
+    std::mutex mutex;
+    std::set<std::string> keys;
+  };
+  std::shared_ptr<AskedKeys> asked_ = std::make_shared<AskedKeys>();  // shared by copies
 };
+
+// The keys of `file` no code asked for, except those of other programs that lumaslam reads no
+// value from on purpose (ORB-SLAM3's Viewer.*, IMU.*, Camera.type, ...; the generator's
+// Synth.* and Dataset.*), each with the closest asked key when one is a likely typo of it.
+struct UnknownKey {
+  std::string key;
+  std::string suggestion;  // empty: nothing close
+};
+std::vector<UnknownKey> unknownKeys(const SettingsFile& file);
 
 // Supported T for get/find: bool (0/1, true/false), int, double, float, std::string,
 // std::vector<double>.

@@ -22,11 +22,14 @@ class KeyReader {
 
   const SettingsFile& file() const { return file_; }
 
+  // The first of `keys` the file has; every one is asked (core::unknownKeys), so that an old
+  // name beside the new one is not reported as unknown.
   std::optional<std::string_view> presentKey(Keys keys) const {
+    std::optional<std::string_view> present;
     for (const auto key : keys) {
-      if (file_.has(key)) return key;
+      if (file_.has(key) && !present) present = key;
     }
-    return std::nullopt;
+    return present;
   }
   bool hasAny(Keys keys) const { return presentKey(keys).has_value(); }
 
@@ -138,10 +141,13 @@ CameraSettings readCamera(const KeyReader& in, int index, CameraModel model,
                                        "found {}",
                                        camera.size.height, camera.cy));
   }
-  if (model == CameraModel::Pinhole) {
-    const std::array<std::string_view, 5> names{"k1", "k2", "p1", "p2", "k3"};
-    for (std::size_t i = 0; i < names.size(); ++i)
+  const std::array<std::string_view, 5> names{"k1", "k2", "p1", "p2", "k3"};
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    if (model == CameraModel::Pinhole) {
       camera.distortion[i] = number(names[i], 0.0).first;
+    } else {  // a rectified camera has none (ORB-SLAM3): known keys, values not used
+      (void)in.hasAny({prefix + std::string(names[i]), oldPrefix + std::string(names[i])});
+    }
   }
   return camera;
 }
