@@ -83,6 +83,11 @@ TEST(CliEval, ReadsGroundTruthFromADatasetSpec) {
   EXPECT_EQ(report["ate"]["count"], 160);
   EXPECT_LT(report["ate"]["max"].get<double>(), 1e-6);
   EXPECT_EQ(report["rpe"]["unit"], "m");
+
+  // The table on stdout is a result too: a full device is an error, not exit 0 (issue 20).
+  const RunResult full =
+      runCli("eval " + est_path.string() + " kitti:" + sequence.string() + " > /dev/full");
+  EXPECT_NE(full.exit_code, 0);
 }
 
 TEST(CliEval, MissingOrBadInputFailsWithAMessageNamingIt) {

@@ -52,9 +52,15 @@ TEST(CliRun, RepeatWritesEachRunAndTheirSpread) {
   const auto out = dir.path() / "out";
   const auto synth = runCli("synth " + data.string() + " --preset xyz-rgbd --frames 30 --seed 4");
   ASSERT_EQ(synth.exit_code, 0) << synth.output;
+  // A single run's files in the folder before (issue 20): not left beside run_K/.
+  std::filesystem::create_directories(out);
+  std::ofstream(out / "summary.json") << "{}\n";
+  std::ofstream(out / "trajectory.txt") << "# stale\n";
   const auto run = runCli("run --dataset tum:" + data.string() +
                           " --enhance off --repeat 3 --out " + out.string());
   ASSERT_EQ(run.exit_code, 0) << run.output;
+  EXPECT_FALSE(std::filesystem::exists(out / "summary.json"));
+  EXPECT_FALSE(std::filesystem::exists(out / "trajectory.txt"));
 
   std::ifstream report_file(out / "repeatability.json");
   ASSERT_TRUE(report_file.good()) << run.output;
@@ -88,6 +94,14 @@ TEST(CliRun, MissingSettingsOrDatasetIsAClearError) {
                                    (dir.path() / "absent.yaml").string());
   EXPECT_NE(bad_settings.exit_code, 0);
   EXPECT_NE(bad_settings.output.find("absent.yaml"), std::string::npos) << bad_settings.output;
+
+  // Out-of-range counts are refused by name (issue 20), not wrapped around or run forever.
+  for (const char* value : {"-1", "1e20"}) {
+    const auto frames =
+        runCli("run --dataset tum:" + dir.path().string() + " --max-frames " + std::string(value));
+    EXPECT_NE(frames.exit_code, 0) << value;
+    EXPECT_NE(frames.output.find("--max-frames"), std::string::npos) << frames.output;
+  }
 }
 
 }  // namespace

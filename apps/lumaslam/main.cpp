@@ -65,7 +65,14 @@ int main(int argc, char** argv) {
   for (auto& [sub, entry] : runners) {
     if (!sub->parsed()) continue;
     try {
-      return entry.second();
+      const int code = entry.second();
+      // Results printed to stdout (tables, JSON) count as output too: `eval > /dev/full` must
+      // not exit 0.
+      if (std::fflush(stdout) != 0 || std::ferror(stdout)) {
+        std::fprintf(stderr, "lumaslam %s: error: writing to stdout failed\n", entry.first.c_str());
+        return code == 0 ? 1 : code;
+      }
+      return code;
     } catch (const std::exception& e) {
       std::fprintf(stderr, "lumaslam %s: error: %s\n", entry.first.c_str(), e.what());
       return 1;

@@ -54,22 +54,6 @@ nlohmann::json writeMapTrajectories(const System& system, const std::filesystem:
   return maps;
 }
 
-// Files an earlier run left in `out`: a run replaces them all, so that a folder never mixes
-// the results of two runs (docs/results.md).
-void removeEarlierOutputs(const std::filesystem::path& out) {
-  std::error_code ec;
-  for (const char* name : {"trajectory.txt", "keyframes.txt", "timing.csv", "summary.json",
-                           "evaluation.svg", "repeatability.json"}) {
-    if (std::filesystem::is_regular_file(out / name, ec)) std::filesystem::remove(out / name, ec);
-  }
-  for (const auto& entry : std::filesystem::directory_iterator(out, ec)) {
-    const std::string name = entry.path().filename().string();
-    if (entry.is_regular_file(ec) && name.starts_with("trajectory_map")) {
-      std::filesystem::remove(entry.path(), ec);
-    }
-  }
-}
-
 struct SkippedFrame {
   std::string what;  // the file and the problem
 };
@@ -225,6 +209,21 @@ void evaluateAgainstGroundTruth(io::DatasetReader& reader, const io::Settings& s
 }
 
 }  // namespace
+
+// docs/results.md
+void removeEarlierOutputs(const std::filesystem::path& out) {
+  std::error_code ec;
+  for (const char* name : {"trajectory.txt", "keyframes.txt", "timing.csv", "summary.json",
+                           "evaluation.svg", "repeatability.json"}) {
+    if (std::filesystem::is_regular_file(out / name, ec)) std::filesystem::remove(out / name, ec);
+  }
+  for (const auto& entry : std::filesystem::directory_iterator(out, ec)) {
+    const std::string name = entry.path().filename().string();
+    if (entry.is_regular_file(ec) && name.starts_with("trajectory_map")) {
+      std::filesystem::remove(entry.path(), ec);
+    }
+  }
+}
 
 int runPipeline(const RunOptions& options) {
   auto settings_path = options.settings;

@@ -25,6 +25,10 @@ struct RunOptions {
   BadFrame on_bad_frame = BadFrame::Skip;
 };
 
+// Removes the files an earlier run left in `out` (trajectory*.txt, keyframes.txt, timing.csv,
+// summary.json, evaluation.svg, repeatability.json): a folder holds one run's results.
+void removeEarlierOutputs(const std::filesystem::path& out);
+
 // Returns the process exit code: 0, 1 when stopped at a bad frame, 128 + signal when stopped
 // by SIGINT / SIGTERM (results written and marked partial). Throws lumaslam::Error for bad
 // input found before the first frame and for output that cannot be written.

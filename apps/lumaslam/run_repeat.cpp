@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "lumaslam/core/error.h"
+#include "lumaslam/io/output_file.h"
 
 namespace lumaslam::cli {
 namespace {
@@ -44,6 +45,8 @@ nlohmann::json readSummary(const std::filesystem::path& path) {
 
 int runRepeated(const RunOptions& options, int repeats) {
   if (repeats < 1) fail("--repeat must be at least 1, got {}", repeats);
+  io::requireWritableFolder(options.out);
+  removeEarlierOutputs(options.out);  // no single run's files beside run_K/
   std::vector<double> tracked, ms_median, ate_rmse;
   nlohmann::json runs = nlohmann::json::array();
   for (int k = 1; k <= repeats; ++k) {
@@ -81,7 +84,9 @@ int runRepeated(const RunOptions& options, int repeats) {
     report["ate_rmse"] = toJson(spreadOf(ate_rmse));
     print("ATE RMSE [mm]", spreadOf(ate_rmse), 1000.0);
   }
-  std::ofstream(options.out / "repeatability.json") << report.dump(2) << '\n';
+  io::OutputFile file(options.out / "repeatability.json");
+  file.stream() << report.dump(2) << '\n';
+  file.commit();
   std::printf("spread in %s\n", (options.out / "repeatability.json").string().c_str());
   return 0;
 }

@@ -1,0 +1,90 @@
+#!/usr/bin/env bash
+# Mutation check (issue 22): break one thing on purpose, rebuild, run the accuracy tests, and
+# list which fail; every mutation must be caught by at least one test. Works in its own git
+# worktree of HEAD (your checkout and build are not touched) and prints a Markdown table,
+# also written to $STRENGTH_DIR/test-strength.md.
+#   scripts/test-strength.sh            # every mutation
+#   scripts/test-strength.sh motion-model local-ba   # some of them
+# Environment: STRENGTH_DIR (default build-strength), SHARED (default ../shared), JOBS,
+# CMAKE_FLAGS (e.g. -DCMAKE_CXX_COMPILER_LAUNCHER=ccache).
+set -euo pipefail
+
+root=$(git rev-parse --show-toplevel)
+strength_dir=$(realpath -m "${STRENGTH_DIR:-$root/build-strength}")
+shared=$(realpath -m "${SHARED:-$root/../shared}")
+jobs=${JOBS:-$(nproc)}
+tree=$strength_dir/tree
+build=$tree/build
+
+# name | file | perl substitution (applied once; the script fails if it matches nothing)
+mutations=(
+  "half-orb-features|src/lumaslam/system.cpp|s/orb\.nFeatures = settings\.orb\.nFeatures;/orb.nFeatures = settings.orb.nFeatures \/ 2;/"
+  "motion-model|src/lumaslam/track/tracker.cpp|s/\(velocity_ && trackWithMotionModel\(\)\)/(false \&\& velocity_ \&\& trackWithMotionModel())/"
+  "local-ba|src/lumaslam/mapping/local_mapper.cpp|s/if \(params_\.bundle_adjustment && /if (false \&\& params_.bundle_adjustment \&\& /"
+  "rgb-bgr|src/lumaslam/core/gray_image.cpp|s/cv::COLOR_BGR2GRAY/cv::COLOR_RGB2GRAY/"
+  "dynamic-removal|src/lumaslam/system.cpp|s/  if \(result\.dynamic_boxes\.empty\(\)\) return;/  return;/"
+)
+# The tests that guard accuracy, and the executables they need.
+test_regex='^(System(Rgbd|Stereo|Mono|RealRgbd|Handheld|Dynamic|DynamicMemory|DynamicRpy|LowLight)\.|CliRunRealRgbd|CliRun\.|GrayImage\.)'
+targets=(lumaslam_cli test_system_rgbd test_system_stereo test_system_mono test_system_real_rgbd
+         test_system_handheld test_system_dynamic test_system_dynamic_memory
+         test_system_dynamic_rpy test_system_low_light test_cli_run_real_rgbd test_cli_run
+         test_core_gray_image)
+
+selected=("$@")
+wanted() {
+  [[ ${#selected[@]} -eq 0 ]] && return 0
+  local name
+  for name in "${selected[@]}"; do [[ $name == "$1" ]] && return 0; done
+  return 1
+}
+
+mkdir -p "$strength_dir"
+if [[ ! -d $tree ]]; then
+  git -C "$root" worktree add --detach "$tree" HEAD >/dev/null
+else
+  git -C "$tree" checkout --detach -q "$(git -C "$root" rev-parse HEAD)"
+fi
+cmake -S "$tree" -B "$build" -DCMAKE_BUILD_TYPE=Release -DLUMASLAM_SHARED_DIR="$shared" \
+  ${CMAKE_FLAGS:-} >/dev/null
+
+run_tests() {  # prints the failing tests, one per line
+  cmake --build "$build" -j "$jobs" --target "${targets[@]}" >"$strength_dir/build.log" 2>&1
+  (cd "$build" && ctest -j "$jobs" -R "$test_regex" >"$strength_dir/ctest.log" 2>&1) || true
+  sed -n '/The following tests FAILED:/,$p' "$strength_dir/ctest.log" |
+    sed -n 's/^[[:space:]]*[0-9]* - \([^ ]*\) .*/\1/p'
+}
+
+echo "baseline (no mutation)" >&2
+baseline=$(run_tests)
+if [[ -n $baseline ]]; then
+  echo "test-strength: the unmutated tree fails: $baseline" >&2
+  exit 1
+fi
+
+report=$strength_dir/test-strength.md
+{
+  echo "| mutation | file | failing tests |"
+  echo "|---|---|---|"
+} >"$report"
+missed=0
+for entry in "${mutations[@]}"; do
+  IFS='|' read -r name file substitution <<<"$entry"
+  wanted "$name" || continue
+  echo "mutation $name ($file)" >&2
+  perl -0pi -e "\$n = ($substitution); END { exit(\$n ? 0 : 3) }" "$tree/$file" || {
+    echo "test-strength: mutation $name matched nothing in $file" >&2
+    exit 1
+  }
+  failing=$(run_tests)
+  git -C "$tree" checkout -q -- "$file"
+  if [[ -z $failing ]]; then
+    missed=$((missed + 1))
+    echo "| $name | $file | **none: not caught** |" >>"$report"
+  else
+    echo "| $name | $file | $(echo "$failing" | paste -sd, | sed 's/,/, /g') |" >>"$report"
+  fi
+done
+cmake --build "$build" -j "$jobs" --target "${targets[@]}" >/dev/null 2>&1 || true  # unmutated again
+cat "$report"
+[[ $missed -eq 0 ]] || { echo "test-strength: $missed mutation(s) not caught" >&2; exit 1; }
