@@ -43,81 +43,12 @@ TrackingOutcome Tracker::track(Frame frame) {
   dynamic_memory_.beginFrame(current_.index, current_.dynamic_boxes);
   TrackingOutcome outcome;
   const TrackingState previous = state_;
-
-  bool ok = false;
-  if (state_ == TrackingState::NotInitialized) {
-    ok = initialize();  // monocular: over several frames
-    outcome.new_keyframe = ok;
-    outcome.new_map = ok && active_map_ != 0;
-  } else {
-    updateLastFrame();
-    inliers_ = 0;
-    if (state_ == TrackingState::Ok) {
-      // ORB-SLAM's order: motion model, then the reference keyframe by descriptors (no pose
-      // prior needed: the first frame after initialisation has no velocity, and a fast
-      // rotation leaves the predicted pose many pixels off), then the last pose's window.
-      ok = ((velocity_ && trackWithMotionModel()) || trackReferenceKeyFrame() ||
-            (last_.T_c_w && trackFromPose(*last_.T_c_w, params_.motion_search_radius * 2.0F))) &&
-           trackLocalMap();
-    } else {
-      ok = recoverWhileLost(outcome);
-      if (!ok && newMapDue()) {
-        if (resetDue()) {
-          spdlog::warn("frame {}: map {} lost with {} keyframes: reset", current_.index,
-                       reference_->mapId(), map_->keyFrameCountOf(reference_->mapId()));
-          map_->discardMap(reference_->mapId());
-        }
-        startNewMap();
-        outcome.new_map = outcome.new_keyframe = ok = initialize();
-      }
-    }
-    if (state_ != TrackingState::NotInitialized) {
-      state_ = ok ? TrackingState::Ok : TrackingState::Lost;
-      if (ok && needNewKeyFrame()) {
-        createNewKeyFrame();
-        outcome.new_keyframe = true;
-      }
-    }
-  }
+  const bool ok = estimatePose(outcome);
   const bool map_started = ok && state_ == TrackingState::NotInitialized;
-
   if (ok) {
-    if (last_.T_c_w && previous == TrackingState::Ok) {
-      velocity_ = *current_.T_c_w * last_.T_c_w->inverse();
-    } else {
-      velocity_.reset();
-    }
-    if (map_started) state_ = TrackingState::Ok;
-    lost_since_.reset();
-    for (std::size_t i = 0; i < current_.size(); ++i) {
-      if (current_.outliers[i]) current_.points[i] = nullptr;
-    }
-    if (!current_.reference) current_.reference = reference_;
-    recorder_.recordTracked(current_.timestamp, *current_.T_c_w, current_.reference);
-    // The map's first frame has no local-map inliers yet: the next tracked frame sets them.
-    if (map_started) {
-      recent_inliers_.clear();
-    } else {
-      recent_inliers_.push_back(inliers_);
-      if (recent_inliers_.size() > static_cast<std::size_t>(params_.inlier_reference_frames)) {
-        recent_inliers_.pop_front();
-      }
-    }
-    last_tracked_frame_ = current_.index;
-    last_T_l_r_ = *current_.T_c_w * current_.reference->T_w_c();
-    outcome.T_w_c = current_.T_c_w->inverse();
-    outcome.map = current_.reference->mapId();
+    recordTrackedFrame(previous, map_started, outcome);
   } else {
-    if (previous == TrackingState::Ok) {
-      spdlog::warn("tracking lost at frame {} (t = {:.3f} s): {} inliers", current_.index,
-                   current_.timestamp, inliers_);
-    }
-    if (!lost_since_ && previous != TrackingState::NotInitialized) {
-      lost_since_ = current_.timestamp;
-    }
-    velocity_.reset();
-    recorder_.recordLost(current_.timestamp);
-    current_.T_c_w.reset();
+    recordLostFrame(previous);
   }
   if (outcome.new_map) {
     spdlog::info("new map {} started at frame {} (t = {:.3f} s)", active_map_, current_.index,
@@ -128,8 +59,95 @@ TrackingOutcome Tracker::track(Frame frame) {
   }
   outcome.state = state_;
   outcome.inliers = inliers_;
-  // Keep the last pose we had while lost, as the prior for recovery.
-  if (!ok && last_.T_c_w) {
+  keepAsLastFrame(ok);
+  return outcome;
+}
+
+// The pose of the current frame by the first step that works for the state (docs/tracking.md),
+// then the keyframe decision; a new map when lost long enough. Returns whether it was tracked.
+bool Tracker::estimatePose(TrackingOutcome& outcome) {
+  if (state_ == TrackingState::NotInitialized) {
+    const bool ok = initialize();  // monocular: over several frames
+    outcome.new_keyframe = ok;
+    outcome.new_map = ok && active_map_ != 0;
+    return ok;
+  }
+  updateLastFrame();
+  inliers_ = 0;
+  bool ok = false;
+  if (state_ == TrackingState::Ok) {
+    // ORB-SLAM's order: motion model, then the reference keyframe by descriptors (no pose
+    // prior needed: the first frame after initialisation has no velocity, and a fast
+    // rotation leaves the predicted pose many pixels off), then the last pose's window.
+    ok = ((velocity_ && trackWithMotionModel()) || trackReferenceKeyFrame() ||
+          (last_.T_c_w && trackFromPose(*last_.T_c_w, params_.motion_search_radius * 2.0F))) &&
+         trackLocalMap();
+  } else {
+    ok = recoverWhileLost(outcome);
+    if (!ok && newMapDue()) {
+      if (resetDue()) {
+        spdlog::warn("frame {}: map {} lost with {} keyframes: reset", current_.index,
+                     reference_->mapId(), map_->keyFrameCountOf(reference_->mapId()));
+        map_->discardMap(reference_->mapId());
+      }
+      startNewMap();
+      outcome.new_map = outcome.new_keyframe = ok = initialize();
+      return ok;
+    }
+  }
+  state_ = ok ? TrackingState::Ok : TrackingState::Lost;
+  if (ok && needNewKeyFrame()) {
+    createNewKeyFrame();
+    outcome.new_keyframe = true;
+  }
+  return ok;
+}
+
+void Tracker::recordTrackedFrame(TrackingState previous, bool map_started,
+                                 TrackingOutcome& outcome) {
+  if (last_.T_c_w && previous == TrackingState::Ok) {
+    velocity_ = *current_.T_c_w * last_.T_c_w->inverse();
+  } else {
+    velocity_.reset();
+  }
+  if (map_started) state_ = TrackingState::Ok;
+  lost_since_.reset();
+  for (std::size_t i = 0; i < current_.size(); ++i) {
+    if (current_.outliers[i]) current_.points[i] = nullptr;
+  }
+  if (!current_.reference) current_.reference = reference_;
+  recorder_.recordTracked(current_.timestamp, *current_.T_c_w, current_.reference);
+  // The map's first frame has no local-map inliers yet: the next tracked frame sets them.
+  if (map_started) {
+    recent_inliers_.clear();
+  } else {
+    recent_inliers_.push_back(inliers_);
+    if (recent_inliers_.size() > static_cast<std::size_t>(params_.inlier_reference_frames)) {
+      recent_inliers_.pop_front();
+    }
+  }
+  last_tracked_frame_ = current_.index;
+  last_T_l_r_ = *current_.T_c_w * current_.reference->T_w_c();
+  outcome.T_w_c = current_.T_c_w->inverse();
+  outcome.map = current_.reference->mapId();
+}
+
+void Tracker::recordLostFrame(TrackingState previous) {
+  if (previous == TrackingState::Ok) {
+    spdlog::warn("tracking lost at frame {} (t = {:.3f} s): {} inliers", current_.index,
+                 current_.timestamp, inliers_);
+  }
+  if (!lost_since_ && previous != TrackingState::NotInitialized) {
+    lost_since_ = current_.timestamp;
+  }
+  velocity_.reset();
+  recorder_.recordLost(current_.timestamp);
+  current_.T_c_w.reset();
+}
+
+// While lost, the last pose we had stays the prior for recovery.
+void Tracker::keepAsLastFrame(bool tracked) {
+  if (!tracked && last_.T_c_w) {
     const auto prior = last_.T_c_w;
     const auto reference = last_.reference;
     last_ = std::move(current_);
@@ -139,7 +157,6 @@ TrackingOutcome Tracker::track(Frame frame) {
   } else {
     last_ = std::move(current_);
   }
-  return outcome;
 }
 
 // Lost: look for the map around the last pose we had (short blackouts), then anywhere in the

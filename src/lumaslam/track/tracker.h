@@ -89,6 +89,10 @@ class Tracker {
   std::size_t dynamicPointCount() const { return dynamic_memory_.dynamicCount(); }
 
  private:
+  bool estimatePose(TrackingOutcome& outcome);
+  void recordTrackedFrame(TrackingState previous, bool map_started, TrackingOutcome& outcome);
+  void recordLostFrame(TrackingState previous);
+  void keepAsLastFrame(bool tracked);
   bool initialize();
   bool recoverWhileLost(TrackingOutcome& outcome);
   bool newMapDue() const;
