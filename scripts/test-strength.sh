@@ -25,11 +25,11 @@ mutations=(
   "dynamic-removal|src/lumaslam/system.cpp|s/  if \(result\.dynamic_boxes\.empty\(\)\) return;/  return;/"
 )
 # The tests that guard accuracy, and the executables they need.
-test_regex='^System(Rgbd|Stereo|Mono|Handheld|Dynamic|DynamicMemory|DynamicRpy|LowLight)\.|RealRgbd|^CliRun\.|^GrayImage\.'
+test_regex='^System(Rgbd|Stereo|Mono|Handheld|Dynamic|DynamicMemory|DynamicRpy|LowLight)\.|RealRgbd|^CliRun\.|^GrayImage\.|^TrackingSteps\.'
 targets=(lumaslam_cli test_system_rgbd test_system_stereo test_system_mono test_system_real_rgbd
          test_system_handheld test_system_dynamic test_system_dynamic_memory
          test_system_dynamic_rpy test_system_low_light test_cli_run_real_rgbd test_cli_run
-         test_core_gray_image test_system_real_rgbd)
+         test_core_gray_image test_system_real_rgbd test_system_tracking_steps)
 
 selected=("$@")
 wanted() {

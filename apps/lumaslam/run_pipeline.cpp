@@ -78,7 +78,8 @@ void writeTimingRow(std::ostream& timing, const io::FrameData& frame, const Fram
                         t.mapping, t.total)
          << fmt::format(",{:.3f},{:.3f},{},{},", t.detection_wait, t.detection,
                         result.dynamic_boxes.size(), result.dropped_features.size())
-         << (result.outcome.T_w_c ? std::to_string(result.outcome.map) : std::string()) << '\n';
+         << (result.outcome.T_w_c ? std::to_string(result.outcome.map) : std::string()) << ','
+         << track::toString(result.outcome.step) << '\n';
 }
 
 // Returns false when the loop must stop here (a bad frame with --on-bad-frame stop).
@@ -255,7 +256,7 @@ int runPipeline(const RunOptions& options) {
   io::OutputFile timing(options.out / "timing.csv");
   timing.stream()
       << "frame,timestamp,state,inliers,enhance_ms,features_ms,tracking_ms,mapping_ms,total_ms,"
-         "detection_wait_ms,detection_ms,boxes,dropped_features,map\n";
+         "detection_wait_ms,detection_ms,boxes,dropped_features,map,step\n";
   const StopOnSignal stop;
   const FrameLoop loop = trackFrames(*reader, system, timing, options, stop);
   if (loop.frames == 0 && loop.exit_code == 0) {

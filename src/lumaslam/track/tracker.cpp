@@ -27,6 +27,24 @@ const char* toString(TrackingState state) {
   return "?";
 }
 
+const char* toString(TrackingStep step) {
+  switch (step) {
+    case TrackingStep::None:
+      return "none";
+    case TrackingStep::Initialization:
+      return "initialization";
+    case TrackingStep::MotionModel:
+      return "motion model";
+    case TrackingStep::ReferenceKeyFrame:
+      return "reference keyframe";
+    case TrackingStep::LastPose:
+      return "last pose";
+    case TrackingStep::Relocalization:
+      return "relocalization";
+  }
+  return "?";
+}
+
 Tracker::Tracker(std::shared_ptr<map::Map> map, KeyFrameSink& mapper, const FrameCamera& camera,
                  std::shared_ptr<const feature::ScaleLevels> pyramid, const TrackerParams& params)
     : map_(std::move(map)),
@@ -70,6 +88,7 @@ bool Tracker::estimatePose(TrackingOutcome& outcome) {
     const bool ok = initialize();  // monocular: over several frames
     outcome.new_keyframe = ok;
     outcome.new_map = ok && active_map_ != 0;
+    if (ok) outcome.step = TrackingStep::Initialization;
     return ok;
   }
   updateLastFrame();
@@ -79,9 +98,14 @@ bool Tracker::estimatePose(TrackingOutcome& outcome) {
     // ORB-SLAM's order: motion model, then the reference keyframe by descriptors (no pose
     // prior needed: the first frame after initialisation has no velocity, and a fast
     // rotation leaves the predicted pose many pixels off), then the last pose's window.
-    ok = ((velocity_ && trackWithMotionModel()) || trackReferenceKeyFrame() ||
-          (last_.T_c_w && trackFromPose(*last_.T_c_w, params_.motion_search_radius * 2.0F))) &&
-         trackLocalMap();
+    if (velocity_ && trackWithMotionModel()) {
+      outcome.step = TrackingStep::MotionModel;
+    } else if (trackReferenceKeyFrame()) {
+      outcome.step = TrackingStep::ReferenceKeyFrame;
+    } else if (last_.T_c_w && trackFromPose(*last_.T_c_w, params_.motion_search_radius * 2.0F)) {
+      outcome.step = TrackingStep::LastPose;
+    }
+    ok = outcome.step != TrackingStep::None && trackLocalMap();
   } else {
     ok = recoverWhileLost(outcome);
     if (!ok && newMapDue()) {
@@ -92,10 +116,12 @@ bool Tracker::estimatePose(TrackingOutcome& outcome) {
       }
       startNewMap();
       outcome.new_map = outcome.new_keyframe = ok = initialize();
+      if (ok) outcome.step = TrackingStep::Initialization;
       return ok;
     }
   }
   state_ = ok ? TrackingState::Ok : TrackingState::Lost;
+  if (!ok) outcome.step = TrackingStep::None;
   if (ok && needNewKeyFrame()) {
     createNewKeyFrame();
     outcome.new_keyframe = true;
@@ -163,9 +189,15 @@ void Tracker::keepAsLastFrame(bool tracked) {
 // atlas by place recognition (ORB-SLAM's Relocalization), then the last reference keyframe by
 // descriptors (violent motion; what recovers without a vocabulary).
 bool Tracker::recoverWhileLost(TrackingOutcome& outcome) {
-  if (last_.T_c_w && trackFromPose(*last_.T_c_w, params_.lost_search_radius) && trackLocalMap())
+  if (last_.T_c_w && trackFromPose(*last_.T_c_w, params_.lost_search_radius) && trackLocalMap()) {
+    outcome.step = TrackingStep::LastPose;
     return true;
-  if (relocalize() && trackLocalMap()) return outcome.relocalized = true;
+  }
+  if (relocalize() && trackLocalMap()) {
+    outcome.step = TrackingStep::Relocalization;
+    return outcome.relocalized = true;
+  }
+  outcome.step = TrackingStep::ReferenceKeyFrame;
   return trackReferenceKeyFrame() && trackLocalMap();
 }
 

@@ -23,6 +23,17 @@ namespace lumaslam::track {
 enum class TrackingState { NotInitialized, Ok, Lost };
 const char* toString(TrackingState state);
 
+// The step that gave a frame its pose prior and matches before the local map (docs/tracking.md).
+enum class TrackingStep {
+  None,
+  Initialization,
+  MotionModel,
+  ReferenceKeyFrame,
+  LastPose,
+  Relocalization
+};
+const char* toString(TrackingStep step);
+
 struct TrackerParams {
   int min_initial_features = 500;         // features with depth needed to start a map
   int max_frames_between_keyframes = 30;  // camera fps, as ORB-SLAM
@@ -67,7 +78,8 @@ struct TrackingOutcome {
   bool new_keyframe = false;
   bool relocalized = false;  // recovered from Lost by the relocalizer (not the last-pose search)
   bool new_map = false;      // this frame started a new map of the atlas
-  map::MapId map = 0;        // the map the frame was tracked in (when tracked)
+  TrackingStep step = TrackingStep::None;  // None when lost
+  map::MapId map = 0;                      // the map the frame was tracked in (when tracked)
 };
 
 class Tracker {
