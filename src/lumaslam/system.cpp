@@ -420,10 +420,13 @@ std::map<map::MapId, Trajectory> System::mapTrajectories() const {
   return by_map;
 }
 
-map::MapId System::mainMap() const {
+namespace {
+
+// The map with most frames (the lowest id on a tie; 0 when nothing was tracked).
+map::MapId mapWithMostFrames(const std::map<map::MapId, Trajectory>& by_map) {
   map::MapId main = 0;
   std::size_t most = 0;
-  for (const auto& [id, trajectory] : tracker_->trajectory().framesByMap()) {
+  for (const auto& [id, trajectory] : by_map) {
     if (trajectory.size() > most) {
       most = trajectory.size();
       main = id;
@@ -432,9 +435,15 @@ map::MapId System::mainMap() const {
   return main;
 }
 
+}  // namespace
+
+map::MapId System::mainMap() const {
+  return mapWithMostFrames(tracker_->trajectory().framesByMap());
+}
+
 Trajectory System::frameTrajectory() const {
   auto by_map = mapTrajectories();
-  const auto main = by_map.find(mainMap());
+  const auto main = by_map.find(mapWithMostFrames(by_map));
   return main == by_map.end() ? Trajectory{} : std::move(main->second);
 }
 

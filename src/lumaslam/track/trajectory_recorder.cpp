@@ -32,16 +32,6 @@ void TrajectoryRecorder::recordLost(double timestamp) {
   records_.push_back({timestamp, SE3::Identity(), nullptr});
 }
 
-Trajectory TrajectoryRecorder::frames() const {
-  Trajectory trajectory;
-  for (auto& [id, frames] : framesByMap()) {
-    trajectory.insert(trajectory.end(), frames.begin(), frames.end());
-  }
-  std::sort(trajectory.begin(), trajectory.end(),
-            [](const auto& a, const auto& b) { return a.timestamp < b.timestamp; });
-  return trajectory;
-}
-
 std::map<map::MapId, Trajectory> TrajectoryRecorder::framesByMap() const {
   std::map<map::MapId, Trajectory> by_map;
   for (const auto& record : records_) {

@@ -16,11 +16,9 @@ class TrajectoryRecorder {
   void recordTracked(double timestamp, const SE3& T_c_w, std::shared_ptr<map::KeyFrame> reference);
   void recordLost(double timestamp);
 
-  // Tracked frames only (lost frames get no invented pose), T_w_c in the world of their map;
-  // frames of a reset map (map::kDiscardedMap) are left out.
-  Trajectory frames() const;
-  // The same per map of the atlas (the map each frame's reference keyframe is in now, so that
-  // frames of merged maps are together, in the joined map's world).
+  // Tracked frames only (lost frames get no invented pose), T_w_c, per map of the atlas: the
+  // map each frame's reference keyframe is in now, so that frames of merged maps are together,
+  // in the joined map's world. Frames of a reset map (map::kDiscardedMap) are left out.
   std::map<map::MapId, Trajectory> framesByMap() const;
   std::size_t trackedCount() const;
   std::size_t lostCount() const;
