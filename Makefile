@@ -6,7 +6,7 @@ JOBS ?= $(shell nproc)
 SHARED ?= $(abspath ../shared)
 CMAKE_FLAGS ?=
 
-.PHONY: all deps configure build demo test test-strength test-tsan test-asan bench clean format
+.PHONY: all deps configure build demo test test-strength test-tsan test-asan bench bench-dynamic clean format
 
 all: build
 
@@ -61,6 +61,11 @@ test-asan: deps
 
 bench: build
 	$(BUILD_DIR)/lumaslam_bench --benchmark_min_time=0.2
+
+# Dynamic-scene table of docs/dynamic.md (issue 16): every walking sequence x removal
+# configuration x 5 seeds, threaded mapping; BENCH_DYNAMIC_ARGS narrows it (see the script).
+bench-dynamic: build
+	scripts/bench-dynamic.py --lumaslam $(BUILD_DIR)/lumaslam --shared $(SHARED) $(BENCH_DYNAMIC_ARGS)
 
 format:
 	@find src apps tests bench -name '*.h' -o -name '*.cpp' | xargs clang-format -i

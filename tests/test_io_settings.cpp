@@ -240,6 +240,19 @@ TEST(Settings, SensorSystemKeysAndOverride) {
   EXPECT_EQ(withSection.file->get<std::string>("Enhancement.preset"), "night");
 }
 
+// The motion test is on by default for RGB-D only; the key turns it on or off for any sensor.
+TEST(Settings, MotionEvidenceDefaultsBySensor) {
+  const std::string rgbd =
+      kMonoNew + "Stereo.b: 0.08\nStereo.ThDepth: 40\nRGBD.DepthMapFactor: 1000\n";
+  EXPECT_TRUE(parse(rgbd).dynamic.motionEvidenceFor(SensorType::Rgbd));
+  EXPECT_FALSE(parse(rgbd).dynamic.motionEvidenceFor(SensorType::Stereo));
+  EXPECT_FALSE(parse(kMonoNew).dynamic.motionEvidenceFor(SensorType::Monocular));
+  EXPECT_FALSE(
+      parse(rgbd + "Dynamic.motionEvidence: 0\n").dynamic.motionEvidenceFor(SensorType::Rgbd));
+  EXPECT_TRUE(parse(kMonoNew + "Dynamic.motionEvidence: 1\n")
+                  .dynamic.motionEvidenceFor(SensorType::Monocular));
+}
+
 TEST(Settings, DatasetRootIsResolvedAgainstTheSettingsFolder) {
   lumaslam::test::TempDir dir("settings_root");
   const fs::path file = dir.path() / "run.yaml";

@@ -21,6 +21,7 @@ TEST(SystemDynamicMemory, RecentBoxesCoverForMissedDetections) {
   bursts.write(boxes);
   SystemOptions options;
   options.detector = "boxes:" + boxes.string();
+  options.motion_evidence = false;  // box removal alone (issue 6)
 
   const auto with_memory = test::runSynthetic(sequence, options);
   const auto without_memory =

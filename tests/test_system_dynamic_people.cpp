@@ -20,9 +20,11 @@ TEST(SystemDynamicPeople, YoloRemovalOnPhotoWalkersMeetsTheIssueTarget) {
                                          photo_walkers);
   SystemOptions without_options;
   without_options.detector = "none";
+  without_options.motion_evidence = false;  // box removal alone (issue 6)
   const auto without = test::runSynthetic(sequence, without_options, {});
   SystemOptions yolo_options;
   yolo_options.detector = "yolo:" + model.string();
+  yolo_options.motion_evidence = false;  // box removal alone (issue 6)
   std::size_t frames_with_drops = 0;
   const auto yolo =
       test::runSynthetic(sequence, yolo_options, [&](const synth::Frame&, const FrameResult& r) {
@@ -53,6 +55,7 @@ TEST(SystemDynamicPeople, GroundTruthBoxRemovalKeepsEveryFrameNearTheTruth) {
   boxes.write(box_file);
   SystemOptions options;
   options.detector = "boxes:" + box_file.string();
+  options.motion_evidence = false;  // box removal alone (issue 6)
   const auto run = test::runSynthetic(sequence, options);
   EXPECT_EQ(run.tracked, run.frames);
   EXPECT_LE(run.ate(), 0.01);  // issue 6's box-file target

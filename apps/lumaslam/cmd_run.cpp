@@ -40,6 +40,9 @@ const bool registered = registerCommand(
                      "ORBvoc.txt), or 'none'; default: the vocabulary shipped with lumaslam");
       cmd.add_flag("--no-loop-closing", options->no_loop_closing,
                    "Keep relocalization but do not close loops (overrides Loop.closing)");
+      cmd.add_flag("--no-motion-evidence", options->no_motion_evidence,
+                   "Keep map points that keep moving against the camera's pose (the class-free "
+                   "motion test, docs/dynamic.md; overrides Dynamic.motionEvidence)");
       cmd.add_flag("--strict-settings", options->strict_settings,
                    "Fail on settings keys nothing reads (typos); default: a warning naming the "
                    "closest known key");

@@ -79,7 +79,8 @@ void writeTimingRow(std::ostream& timing, const io::FrameData& frame, const Fram
          << fmt::format(",{:.3f},{:.3f},{},{},", t.detection_wait, t.detection,
                         result.dynamic_boxes.size(), result.dropped_features.size())
          << (result.outcome.T_w_c ? std::to_string(result.outcome.map) : std::string()) << ','
-         << track::toString(result.outcome.step) << '\n';
+         << track::toString(result.outcome.step) << ',' << result.outcome.moving_features << ','
+         << fmt::format("{:.3f}", result.outcome.motion_evidence_ms) << '\n';
 }
 
 // Returns false when the loop must stop here (a bad frame with --on-bad-frame stop).
@@ -250,13 +251,15 @@ int runPipeline(const RunOptions& options) {
   if (options.sequential) system_options.sequential = true;
   system_options.vocabulary = options.vocabulary;
   if (options.no_loop_closing) system_options.loop_closing = false;
+  if (options.no_motion_evidence) system_options.motion_evidence = false;
   system_options.strict_settings = options.strict_settings;
   System system(settings, system_options);
 
   io::OutputFile timing(options.out / "timing.csv");
   timing.stream()
       << "frame,timestamp,state,inliers,enhance_ms,features_ms,tracking_ms,mapping_ms,total_ms,"
-         "detection_wait_ms,detection_ms,boxes,dropped_features,map,step\n";
+         "detection_wait_ms,detection_ms,boxes,dropped_features,map,step,moving_features,"
+         "motion_ms\n";
   const StopOnSignal stop;
   const FrameLoop loop = trackFrames(*reader, system, timing, options, stop);
   if (loop.frames == 0 && loop.exit_code == 0) {

@@ -18,6 +18,7 @@ struct RunOptions {
   bool sequential = false;
   std::optional<std::filesystem::path> vocabulary;  // overrides Loop.vocabulary
   bool no_loop_closing = false;                     // overrides Loop.closing
+  bool no_motion_evidence = false;                  // overrides Dynamic.motionEvidence
   bool strict_settings = false;                     // unknown settings keys are an error
   // A frame that cannot be read or tracked (unreadable image, wrong size, missing depth):
   // skip it with a warning (default), or stop there; either way what was tracked is written.

@@ -159,6 +159,8 @@ System::System(const io::Settings& settings, const SystemOptions& options)
   tracker_params.max_frames_between_keyframes = std::max(1, static_cast<int>(settings_.camera.fps));
   tracker_params.inlier_reference_half_life = tracker_params.max_frames_between_keyframes;
   tracker_params.new_map_after_s = settings_.system.newMapAfter;
+  tracker_params.motion_evidence.enabled =
+      options.motion_evidence.value_or(settings_.dynamic.motionEvidenceFor(settings_.sensor));
   if (stereo) {
     // ORB-SLAM starts a stereo map from a frame with > 500 keypoints, of which typically half
     // have a stereo match; 500 matches would delay EuRoC V1_01 by 6 frames with enhancement

@@ -50,7 +50,8 @@ struct SystemOptions {
   // Overrides Loop.vocabulary: a vocabulary file for relocalization and loop closing, or
   // "none". Neither set: the default vocabulary (loop/vocabulary_choice.h).
   std::optional<std::filesystem::path> vocabulary;
-  std::optional<bool> loop_closing;  // overrides Loop.closing (needs a vocabulary)
+  std::optional<bool> loop_closing;     // overrides Loop.closing (needs a vocabulary)
+  std::optional<bool> motion_evidence;  // overrides Dynamic.motionEvidence
   // Settings keys nothing reads (typos, e.g. Enhancement.presett) are a warning naming the
   // closest known key; with strict_settings an Error.
   bool strict_settings = false;

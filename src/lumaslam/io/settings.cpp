@@ -279,6 +279,12 @@ SystemSettings readSystem(const KeyReader& in) {
   return system;
 }
 
+DynamicSettings readDynamic(const KeyReader& in) {
+  DynamicSettings dynamic;
+  dynamic.motionEvidence = in.find<bool>({"Dynamic.motionEvidence"});
+  return dynamic;
+}
+
 LoopSettings readLoop(const KeyReader& in) {
   LoopSettings loop;
   if (const auto vocabulary = in.find<std::string>({"Loop.vocabulary"})) {
@@ -383,6 +389,7 @@ Settings Settings::fromFile(std::shared_ptr<const core::SettingsFile> file,
   settings.orb = readOrb(in);
   settings.system = readSystem(in);
   settings.loop = readLoop(in);
+  settings.dynamic = readDynamic(in);
   return settings;
 }
 

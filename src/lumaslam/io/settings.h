@@ -90,6 +90,16 @@ struct LoopSettings {
   bool closing = true;
 };
 
+struct DynamicSettings {
+  // Dynamic.motionEvidence: class-free motion test of tracking (track/motion_evidence.h):
+  // map points whose residuals say they move leave pose estimation, moving features make no
+  // map point. Unset: on for RGB-D, off for stereo and monocular (docs/dynamic.md says why).
+  std::optional<bool> motionEvidence;
+  bool motionEvidenceFor(SensorType sensor) const {
+    return motionEvidence.value_or(sensor == SensorType::Rgbd);
+  }
+};
+
 struct Settings {
   SensorType sensor = SensorType::Monocular;
   CameraSettings camera;  // camera 1 (left camera for stereo, colour camera for RGB-D)
@@ -100,6 +110,7 @@ struct Settings {
   OrbSettings orb;
   SystemSettings system;
   LoopSettings loop;
+  DynamicSettings dynamic;
   // The whole file, for modules that read their own sections (Enhancement.*, Detector.*).
   std::shared_ptr<const core::SettingsFile> file;
   std::filesystem::path path;  // empty when read from a string

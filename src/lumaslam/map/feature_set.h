@@ -1,6 +1,7 @@
 #pragma once
 // The features of one frame as tracking hands them to a keyframe. Immutable once a keyframe
 // holds it (shared, read without locks).
+#include <cstdint>
 #include <memory>
 #include <vector>
 
@@ -19,9 +20,13 @@ struct FeatureSet {
   // Undistorted keypoints bucketed for window queries (projection search, fusion); may be
   // null for feature sets built by hand in tests.
   std::shared_ptr<const feature::FeatureGrid> grid;
+  // Per feature, 1 when tracking found it moving (track::MotionEvidence): no map point is
+  // made from it. Empty: none known. Set by the tracker before a keyframe holds the set.
+  std::vector<std::uint8_t> moving;
 
   std::size_t size() const { return keypoints.size(); }
   bool hasStereo(std::size_t i) const { return i < u_right.size() && u_right[i] >= 0.0F; }
+  bool isMoving(std::size_t i) const { return i < moving.size() && moving[i] != 0; }
 };
 
 }  // namespace lumaslam::map

@@ -22,8 +22,9 @@ std::vector<std::pair<std::size_t, std::size_t>> matchForTriangulation(const map
                                 k.fy * C1_in_2.y() / C1_in_2.z() + k.cy);
   const auto& pyramid = kf2.pyramid();
 
-  // Features of view 2 without a point and not next to the epipole, with their level's
-  // epipolar threshold: the cheap geometric test runs before the Hamming distance.
+  // Features of view 2 without a point, not moving (tracking's motion evidence) and not next
+  // to the epipole, with their level's epipolar threshold: the cheap geometric test runs
+  // before the Hamming distance.
   struct Candidate {
     std::size_t index;
     double x, y;
@@ -31,7 +32,7 @@ std::vector<std::pair<std::size_t, std::size_t>> matchForTriangulation(const map
   };
   std::vector<Candidate> candidates;
   for (std::size_t j = 0; j < f2.size(); ++j) {
-    if (points2[j]) continue;
+    if (points2[j] || f2.isMoving(j)) continue;
     const Eigen::Vector2d p2(f2.undistorted[j].x, f2.undistorted[j].y);
     const auto octave2 = static_cast<std::size_t>(f2.keypoints[j].octave);
     const double scale2 = pyramid.scale(octave2);
@@ -42,7 +43,7 @@ std::vector<std::pair<std::size_t, std::size_t>> matchForTriangulation(const map
   std::vector<int> best_for2(f2.size(), std::numeric_limits<int>::max());
   std::vector<int> match_of2(f2.size(), -1);
   for (std::size_t i = 0; i < f1.size(); ++i) {
-    if (points1[i]) continue;
+    if (points1[i] || f1.isMoving(i)) continue;
     const std::uint8_t* d1 = f1.descriptors.ptr<std::uint8_t>(static_cast<int>(i));
     const Eigen::Vector3d line =
         F21 * Eigen::Vector3d(f1.undistorted[i].x, f1.undistorted[i].y, 1.0);

@@ -36,7 +36,7 @@ int fusePointsInto(map::Map& map, const std::shared_ptr<map::KeyFrame>& target,
     int best_index = -1;
     for (const std::size_t i : candidates) {
       const int octave = features.keypoints[i].octave;
-      if (octave < level - 1 || octave > level) continue;
+      if (octave < level - 1 || octave > level || features.isMoving(i)) continue;
       const Eigen::Vector2d uv(features.undistorted[i].x, features.undistorted[i].y);
       if (!reprojectionAcceptable(X_w, T_c_w, k, uv, features.u_right[i], pyramid.sigma2(octave))) {
         continue;

@@ -26,6 +26,7 @@ void keepFeatures(Frame& frame, const std::vector<int>& kept) {
     subset->undistorted.push_back(all.undistorted[k]);
     subset->depth.push_back(all.depth[k]);
     subset->u_right.push_back(all.u_right[k]);
+    if (!all.moving.empty()) subset->moving.push_back(all.moving[k]);
     all.descriptors.row(i).copyTo(subset->descriptors.row(static_cast<int>(row)));
   }
   if (all.grid) {

@@ -24,6 +24,8 @@ struct Frame {
   std::optional<SE3> T_c_w;
   std::shared_ptr<map::KeyFrame> reference;
   std::vector<cv::Rect2f> dynamic_boxes;  // moving objects detected in this image (pixels)
+  // Per feature, log-odds that it is static (MotionEvidence); empty until the pose is known.
+  std::vector<float> static_log_odds;
 
   std::size_t size() const { return features ? features->size() : 0; }
   void clearMatches() {

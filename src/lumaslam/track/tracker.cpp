@@ -1,6 +1,7 @@
 #include "lumaslam/track/tracker.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <map>
 #include <numeric>
@@ -53,7 +54,8 @@ Tracker::Tracker(std::shared_ptr<map::Map> map, KeyFrameSink& mapper, const Fram
       pyramid_(std::move(pyramid)),
       params_(params),
       bounds_(camera.pinhole.undistortedBounds()),
-      dynamic_memory_(params.dynamic_memory) {}
+      dynamic_memory_(params.dynamic_memory),
+      motion_evidence_(params.motion_evidence) {}
 
 TrackingOutcome Tracker::track(Frame frame) {
   std::lock_guard map_lock(map_->updateMutex());
@@ -105,7 +107,7 @@ bool Tracker::estimatePose(TrackingOutcome& outcome) {
     } else if (last_.T_c_w && trackFromPose(*last_.T_c_w, params_.motion_search_radius * 2.0F)) {
       outcome.step = TrackingStep::LastPose;
     }
-    ok = outcome.step != TrackingStep::None && trackLocalMap();
+    ok = outcome.step != TrackingStep::None && trackLocalMap(outcome);
   } else {
     ok = recoverWhileLost(outcome);
     if (!ok && newMapDue()) {
@@ -189,16 +191,17 @@ void Tracker::keepAsLastFrame(bool tracked) {
 // atlas by place recognition (ORB-SLAM's Relocalization), then the last reference keyframe by
 // descriptors (violent motion; what recovers without a vocabulary).
 bool Tracker::recoverWhileLost(TrackingOutcome& outcome) {
-  if (last_.T_c_w && trackFromPose(*last_.T_c_w, params_.lost_search_radius) && trackLocalMap()) {
+  if (last_.T_c_w && trackFromPose(*last_.T_c_w, params_.lost_search_radius) &&
+      trackLocalMap(outcome)) {
     outcome.step = TrackingStep::LastPose;
     return true;
   }
-  if (relocalize() && trackLocalMap()) {
+  if (relocalize() && trackLocalMap(outcome)) {
     outcome.step = TrackingStep::Relocalization;
     return outcome.relocalized = true;
   }
   outcome.step = TrackingStep::ReferenceKeyFrame;
-  return trackReferenceKeyFrame() && trackLocalMap();
+  return trackReferenceKeyFrame() && trackLocalMap(outcome);
 }
 
 // Lost for new_map_after_s on a frame that could start a map by itself (the dark frames of a
@@ -295,6 +298,7 @@ void Tracker::updateLastFrame() {
   int count = 0;
   for (const auto& [z, i] : by_depth) {
     const auto& point = last_.points[i];
+    if (last_.features->isMoving(i)) continue;
     if (dynamic_memory_.likelyMissedDetection() &&
         dynamic_memory_.nearRecentBox(last_.features->keypoints[i].pt)) {
       continue;
@@ -344,15 +348,21 @@ int Tracker::searchLastFrame(float radius) {
   return static_cast<int>(matches.size());
 }
 
-int Tracker::optimizeCurrentPose() {
+// `use`: which matches take part (null: all); the others are marked outliers. `rounds` > 0
+// overrides the rounds of outlier rejection.
+int Tracker::optimizeCurrentPose(const std::vector<bool>* use, int rounds) {
   optimize::PoseOnlyProblem problem;
   problem.camera = camera_.intrinsics();
   problem.T_c_w = *current_.T_c_w;
   std::vector<std::size_t> feature_of;
   for (std::size_t i = 0; i < current_.size(); ++i) {
     auto& point = current_.points[i];
-    if (point && dynamic_memory_.isDynamic(point->id())) point = nullptr;
+    if (point && leftOutOfPose(*point)) point = nullptr;
     if (!point) continue;
+    if (use && !(*use)[i]) {
+      current_.outliers[i] = true;
+      continue;
+    }
     optimize::PoseObservation obs;
     obs.X_w = point->position();
     const auto& uv = current_.features->undistorted[i];
@@ -367,6 +377,7 @@ int Tracker::optimizeCurrentPose() {
   // Ceres' model of one HuberLoss block per observation, solved without Ceres' per-block
   // overhead (ceres::Solve took 90% of the tracking time).
   options.backend = optimize::PoseBackend::kLevenbergMarquardt;
+  if (rounds > 0) options.rounds = rounds;
   const auto result = optimize::optimizePose(problem, options);
   if (!result.success) return 0;
   current_.T_c_w = result.T_c_w;
@@ -627,10 +638,10 @@ int Tracker::searchLocalPoints() {
   return added;
 }
 
-bool Tracker::trackLocalMap() {
+bool Tracker::trackLocalMap(TrackingOutcome& outcome) {
   updateLocalMap();
   searchLocalPoints();
-  optimizeCurrentPose();
+  optimizeConfirmedPointsFirst();
   cullDynamicPoints();
   inliers_ = 0;
   for (std::size_t i = 0; i < current_.size(); ++i) {
@@ -639,7 +650,80 @@ bool Tracker::trackLocalMap() {
     point->increaseFound();
     if (point->observationCount() > 0) ++inliers_;
   }
-  return enoughInliers();
+  if (!enoughInliers()) return false;
+  excludeMovingPoints(outcome);  // only on an accepted pose: a rejected one would blame the scene
+  return true;
+}
+
+// Robust first pose (issue 16): when enough matched points have been confirmed static by
+// earlier frames, they alone give the pose; the other matches (new points, visual-odometry
+// points, points on something that may have started to move) join only if they fit it. A
+// person mapped at the last keyframe then cannot drag the pose along.
+void Tracker::optimizeConfirmedPointsFirst() {
+  if (!motion_evidence_.enabled()) {
+    optimizeCurrentPose();
+    return;
+  }
+  std::vector<bool> confirmed(current_.size(), false);
+  int count = 0;
+  for (std::size_t i = 0; i < current_.size(); ++i) {
+    const auto& point = current_.points[i];
+    if (point && motion_evidence_.isConfirmedStatic(point->id(), current_.index)) {
+      confirmed[i] = true;
+      ++count;
+    }
+  }
+  if (count < params_.min_confirmed_points) {
+    optimizeCurrentPose();
+    return;
+  }
+  optimizeCurrentPose(&confirmed);
+  std::vector<bool> fits(current_.size(), false);
+  int joining = 0;
+  for (std::size_t i = 0; i < current_.size(); ++i) {
+    const auto& point = current_.points[i];
+    if (!point) continue;
+    fits[i] = confirmed[i] ? !current_.outliers[i]
+                           : motion_evidence_.fitsPose(current_, i, camera_, *pyramid_);
+    if (fits[i] && !confirmed[i]) ++joining;
+  }
+  // A few joining points would barely move the pose: they count as inliers of it as it is.
+  if (20 * joining < count) {
+    for (std::size_t i = 0; i < current_.size(); ++i) {
+      if (fits[i] && !confirmed[i]) current_.outliers[i] = false;
+    }
+    return;
+  }
+  optimizeCurrentPose(&fits, 2);  // from a pose near the optimum: two rounds
+}
+
+bool Tracker::leftOutOfPose(const map::MapPoint& point) const {
+  return dynamic_memory_.isDynamic(point.id()) ||
+         motion_evidence_.isDynamic(point.id(), current_.index);
+}
+
+// Class-free motion evidence (issue 16): map points whose residuals keep saying they moved
+// leave pose estimation for good; features found moving make no map point
+// (FeatureSet::moving). A point that turns dynamic while still an inlier of this pose is
+// taken out and the pose re-estimated. Dynamic points stay in the map (retiring them, and so
+// re-creating points from the same features at the next keyframe, cost accuracy on static
+// scenes: docs/dynamic.md "Motion evidence").
+void Tracker::excludeMovingPoints(TrackingOutcome& outcome) {
+  if (!motion_evidence_.enabled()) return;
+  const auto start = std::chrono::steady_clock::now();
+  const auto verdict = motion_evidence_.update(current_, last_, camera_, *pyramid_);
+  outcome.moving_features = static_cast<int>(verdict.moving_features);
+  bool pose_used_one = false;
+  for (const std::size_t i : verdict.dynamic_points) {
+    if (!current_.outliers[i]) {
+      pose_used_one = true;
+      --inliers_;
+    }
+    current_.outliers[i] = true;
+  }
+  if (pose_used_one) optimizeCurrentPose();
+  outcome.motion_evidence_ms =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
 
 int Tracker::inlierReference() const {
@@ -694,6 +778,7 @@ bool Tracker::needNewKeyFrame() const {
   for (std::size_t i = 0; i < current_.size(); ++i) {
     const float z = current_.features->depth[i];
     if (z <= 0 || z >= camera_.close_depth) continue;
+    if (current_.features->isMoving(i)) continue;  // no map point wanted there
     if (current_.points[i] && !current_.outliers[i]) {
       ++tracked_close;
     } else {
@@ -733,6 +818,7 @@ void Tracker::createNewKeyFrame() {
   int count = 0;
   for (const auto& [z, i] : by_depth) {
     const auto& point = current_.points[i];
+    if (current_.features->isMoving(i)) continue;
     // A missed detection must not put map points on a person who was just there.
     if (dynamic_memory_.likelyMissedDetection() &&
         dynamic_memory_.nearRecentBox(current_.features->keypoints[i].pt)) {

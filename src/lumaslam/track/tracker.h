@@ -16,6 +16,7 @@
 #include "lumaslam/track/frame_relocalizer.h"
 #include "lumaslam/track/keyframe_sink.h"
 #include "lumaslam/track/monocular_initializer.h"
+#include "lumaslam/track/motion_evidence.h"
 #include "lumaslam/track/trajectory_recorder.h"
 
 namespace lumaslam::track {
@@ -57,6 +58,10 @@ struct TrackerParams {
   MonocularInitParams monocular{};
   int min_initial_monocular_points = 50;  // after the initial bundle adjustment (ORB-SLAM3)
   DynamicMemoryParams dynamic_memory;     // points failing near recent people boxes
+  MotionEvidenceParams motion_evidence;   // class-free: residuals of points and feature flow
+  // With motion evidence: the first pose of the local-map step uses only the points confirmed
+  // static, when at least this many are matched.
+  int min_confirmed_points = 50;
   // Atlas (ORB-SLAM3): once tracking has been lost this long (seconds of frame time) and
   // relocalization still fails on a frame that could start a map, a new map starts from it
   // and tracking goes on there; the loop closer merges it when it sees an earlier map again.
@@ -80,6 +85,8 @@ struct TrackingOutcome {
   bool new_map = false;      // this frame started a new map of the atlas
   TrackingStep step = TrackingStep::None;  // None when lost
   map::MapId map = 0;                      // the map the frame was tracked in (when tracked)
+  int moving_features = 0;                 // features the motion test found moving
+  double motion_evidence_ms = 0.0;         // the motion test's time
 };
 
 class Tracker {
@@ -99,6 +106,9 @@ class Tracker {
   const Frame& lastFrame() const { return last_; }
   // Map points declared dynamic so far (failed the chi-square test near recent boxes).
   std::size_t dynamicPointCount() const { return dynamic_memory_.dynamicCount(); }
+  // Map points the residuals of the recent frames say are moving (MotionEvidence), detector or
+  // not, as of the last frame.
+  std::size_t movingPointCount() const { return motion_evidence_.dynamicCount(last_.index); }
 
  private:
   bool estimatePose(TrackingOutcome& outcome);
@@ -118,7 +128,7 @@ class Tracker {
   bool trackReferenceKeyFrame();
   void poseFromPriorOrPnp();
   bool relocalize();
-  bool trackLocalMap();
+  bool trackLocalMap(TrackingOutcome& outcome);
   bool enoughInliers() const;
   bool needNewKeyFrame() const;
   void createNewKeyFrame();
@@ -126,9 +136,12 @@ class Tracker {
   int searchLastFrame(float radius);
   int searchReferencePoints(float radius);
   int searchLocalPoints();
-  int optimizeCurrentPose();
+  int optimizeCurrentPose(const std::vector<bool>* use = nullptr, int rounds = 0);
+  void optimizeConfirmedPointsFirst();
   int discardOutliers();
   void cullDynamicPoints();
+  void excludeMovingPoints(TrackingOutcome& outcome);
+  bool leftOutOfPose(const map::MapPoint& point) const;
   void updateLocalMap();
   std::shared_ptr<map::MapPoint> newPointFromDepth(std::size_t i,
                                                    const std::shared_ptr<map::KeyFrame>& kf);
@@ -158,6 +171,7 @@ class Tracker {
   std::optional<double> lost_since_;  // timestamp of the first frame of the current loss
   map::MapId active_map_ = 0;         // the map new keyframes start in (follows merges)
   DynamicPointMemory dynamic_memory_;
+  MotionEvidence motion_evidence_;
   TrajectoryRecorder recorder_;
   std::unique_ptr<MonocularInitializer> monocular_initializer_;
   std::shared_ptr<const FrameRelocalizer> relocalizer_;
