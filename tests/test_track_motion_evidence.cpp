@@ -80,6 +80,21 @@ std::size_t movingFlagged(const track::Frame& frame, const Scene& s, bool moves)
   return n;
 }
 
+// A keyframe at `first` and a map point per scene point, at its frame-0 position.
+std::vector<std::shared_ptr<map::MapPoint>> mapPoints(const Scene& s, const track::Frame& first,
+                                                      const track::FrameCamera& c) {
+  auto keyframe = std::make_shared<map::KeyFrame>(0, 0, 0.0, *first.T_c_w, first.features,
+                                                  std::make_shared<feature::ScaleLevels>(8, 1.2F),
+                                                  c.intrinsics());
+  std::vector<std::shared_ptr<map::MapPoint>> points;
+  for (std::size_t i = 0; i < s.points.size(); ++i) {
+    auto point = std::make_shared<map::MapPoint>(i, s.points[i], keyframe);
+    point->addObservation(keyframe, static_cast<int>(i));
+    points.push_back(point);
+  }
+  return points;
+}
+
 TEST(MotionEvidence, StaticEvidenceIsPositiveInsideTheThresholdAndNegativeFarOutside) {
   EXPECT_DOUBLE_EQ(track::staticEvidence(0.0, 5.991), 0.5);
   EXPECT_DOUBLE_EQ(track::staticEvidence(5.991, 5.991), 0.0);
@@ -106,15 +121,7 @@ TEST(MotionEvidence, MapPointsOnThePersonTurnDynamicAndWallPointsDoNot) {
   const auto s = scene();
   const auto c = camera();
   const track::Frame first = render(s, 0, c);
-  auto keyframe = std::make_shared<map::KeyFrame>(0, 0, 0.0, *first.T_c_w, first.features,
-                                                  std::make_shared<feature::ScaleLevels>(8, 1.2F),
-                                                  c.intrinsics());
-  std::vector<std::shared_ptr<map::MapPoint>> points;
-  for (std::size_t i = 0; i < s.points.size(); ++i) {
-    auto point = std::make_shared<map::MapPoint>(i, s.points[i], keyframe);
-    point->addObservation(keyframe, static_cast<int>(i));
-    points.push_back(point);
-  }
+  const auto points = mapPoints(s, first, c);
   track::MotionEvidence evidence;
   track::Frame previous = first;
   std::set<std::size_t> dynamic_person;
@@ -142,12 +149,8 @@ TEST(MotionEvidence, APointThatStopsMovingBecomesStaticAgain) {
   const auto s = scene();
   const auto c = camera();
   const track::Frame first = render(s, 0, c);
-  auto keyframe = std::make_shared<map::KeyFrame>(0, 0, 0.0, *first.T_c_w, first.features,
-                                                  std::make_shared<feature::ScaleLevels>(8, 1.2F),
-                                                  c.intrinsics());
   const std::size_t person = 300;
-  auto point = std::make_shared<map::MapPoint>(person, s.points[person], keyframe);
-  point->addObservation(keyframe, static_cast<int>(person));
+  const auto point = mapPoints(s, first, c)[person];
   track::MotionEvidence evidence;
   track::Frame previous = first;
   for (std::size_t index = 1; index <= 40; ++index) {
@@ -173,15 +176,8 @@ TEST(MotionEvidence, ADoubtfulPoseGivesNoMovingEvidence) {
   track::Frame current = render(s, 1, c);
   // The pose is 10 cm off: everything looks as if it moved.
   current.T_c_w = SE3(Eigen::Translation3d(0.1, 0, 0)) * *current.T_c_w;
-  const auto keyframe = std::make_shared<map::KeyFrame>(
-      0, 0, 0.0, *previous.T_c_w, previous.features,
-      std::make_shared<feature::ScaleLevels>(8, 1.2F), c.intrinsics());
-  for (std::size_t i = 0; i < s.points.size(); ++i) {
-    auto point = std::make_shared<map::MapPoint>(i, s.points[i], keyframe);
-    point->addObservation(keyframe, static_cast<int>(i));
-    current.points[i] = point;
-    current.outliers[i] = true;  // pose optimisation kept none of them
-  }
+  current.points = mapPoints(s, previous, c);
+  current.outliers.assign(current.size(), true);  // pose optimisation kept none of them
   const auto verdict = evidence.update(current, previous, c, pyramid());
   EXPECT_FALSE(verdict.evidence_used);
   EXPECT_TRUE(verdict.dynamic_points.empty());
