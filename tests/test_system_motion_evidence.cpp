@@ -24,35 +24,32 @@ synth::SequenceRenderer photoWalkers(const std::string& preset, int frames, int 
   return synth::SequenceRenderer(synth::findPreset(preset), frames, seed, people);
 }
 
+// Runs `sequence` without a detector, with and without the motion test: with it, every frame
+// tracked, ATE <= 3 cm (issue 16: geometry only) and at most `ratio` of the error without.
+void expectRemovedWithoutADetector(const synth::SequenceRenderer& sequence, double ratio) {
+  const auto before = test::runSynthetic(sequence, withoutDetector(false));
+  const auto run = test::runSynthetic(sequence, withoutDetector(true));
+  EXPECT_EQ(run.tracked, run.frames);
+  EXPECT_LE(run.ate(), 0.03);
+  EXPECT_LE(run.ate(), ratio * before.ate()) << "before " << before.ate();
+}
+
 // Walkers cut from real person photos pass close to the camera (one covers a quarter of the
-// view): without the test the tracker follows them by over a metre.
+// view): without the test the tracker follows them by over a metre (1.23 m -> 4.4 mm).
 TEST(SystemMotionEvidence, KeepsPhotoWalkersOutOfThePoseWithoutADetector) {
-  const auto sequence = photoWalkers("walking-xyz-rgbd", 100, 1);
-  const auto before = test::runSynthetic(sequence, withoutDetector(false));
-  const auto run = test::runSynthetic(sequence, withoutDetector(true));
-  EXPECT_EQ(run.tracked, run.frames);
-  EXPECT_LE(run.ate(), 0.03);  // issue 16: geometry only <= 3 cm
-  EXPECT_LE(run.ate(), before.ate() / 10.0) << "before " << before.ate();
+  expectRemovedWithoutADetector(photoWalkers("walking-xyz-rgbd", 100, 1), 0.1);
 }
 
-// The moving crate has no COCO class: no detector could remove it.
+// The moving crate has no COCO class: no detector could remove it (0.30 m -> 4.5 mm).
 TEST(SystemMotionEvidence, KeepsTheCrateAndProceduralWalkersOutWithoutADetector) {
-  const synth::SequenceRenderer sequence(synth::findPreset("walking-xyz-rgbd"), 100, 1);
-  const auto before = test::runSynthetic(sequence, withoutDetector(false));
-  const auto run = test::runSynthetic(sequence, withoutDetector(true));
-  EXPECT_EQ(run.tracked, run.frames);
-  EXPECT_LE(run.ate(), 0.03);
-  EXPECT_LE(run.ate(), before.ate() / 3.0) << "before " << before.ate();
+  expectRemovedWithoutADetector(
+      synth::SequenceRenderer(synth::findPreset("walking-xyz-rgbd"), 100, 1), 1.0 / 3.0);
 }
 
-// A still camera and people walking through the whole view (TUM walking_static).
+// A still camera and people walking through the whole view, TUM walking_static (0.59 m ->
+// 3.7 mm).
 TEST(SystemMotionEvidence, KeepsAStillCameraStillWhilePeopleWalkBy) {
-  const auto sequence = photoWalkers("walking-static-rgbd", 100, 1);
-  const auto before = test::runSynthetic(sequence, withoutDetector(false));
-  const auto run = test::runSynthetic(sequence, withoutDetector(true));
-  EXPECT_EQ(run.tracked, run.frames);
-  EXPECT_LE(run.ate(), 0.03);
-  EXPECT_LE(run.ate(), before.ate() / 3.0) << "before " << before.ate();
+  expectRemovedWithoutADetector(photoWalkers("walking-static-rgbd", 100, 1), 1.0 / 3.0);
 }
 
 // Nothing moves: the test must not cost accuracy, nor take many static points for moving.
