@@ -77,3 +77,36 @@ TEST(CliRunDetector, BadDetectorSpecOrMissingFileIsAClearError) {
 }
 
 }  // namespace
+
+namespace {
+
+// The class-free motion test (issue 16) is on for RGB-D with no detector at all; summary.json
+// says so and how much it flagged, timing.csv has its columns; --no-motion-evidence turns it off.
+TEST(CliRunDetector, MotionEvidenceIsReportedAndCanBeTurnedOff) {
+  TempDir dir("cli_run_motion");
+  const auto data = dir.path() / "data";
+  const auto synth =
+      runCli("synth " + data.string() + " --preset walking-xyz-rgbd --frames 40 --seed 1");
+  ASSERT_EQ(synth.exit_code, 0) << synth.output;
+  for (const bool off : {false, true}) {
+    const auto out = dir.path() / (off ? "off" : "on");
+    const auto run =
+        runCli("run --dataset tum:" + data.string() + " --detector none" +
+               (off ? " --no-motion-evidence" : "") + " --sequential --out " + out.string());
+    ASSERT_EQ(run.exit_code, 0) << run.output;
+    const auto summary = readRunSummary(out);
+    EXPECT_EQ(summary["motion_evidence"]["on"].get<bool>(), !off);
+    const double moving = summary["motion_evidence"]["moving_features_per_frame"].get<double>();
+    if (off) {
+      EXPECT_EQ(moving, 0.0);
+    } else {
+      EXPECT_GT(moving, 5.0);  // the crate and the walkers
+    }
+    std::ifstream timing(out / "timing.csv");
+    std::string header;
+    std::getline(timing, header);
+    EXPECT_NE(header.find(",moving_features,motion_ms"), std::string::npos) << header;
+  }
+}
+
+}  // namespace

@@ -65,6 +65,7 @@ struct FrameLoop {
   std::vector<SkippedFrame> skipped;
   std::vector<double> totals;
   double dropped_sum = 0.0;
+  double moving_sum = 0.0;
   double wait_sum = 0.0;
   std::string status = "complete";  // "partial" (stopped by a signal), "stopped at a bad frame"
   int exit_code = 0;
@@ -135,6 +136,7 @@ FrameLoop trackFrames(io::DatasetReader& reader, System& system, io::OutputFile&
     writeTimingRow(timing.stream(), *frame, result);
     timing.flush();
     loop.dropped_sum += static_cast<double>(result.dropped_features.size());
+    loop.moving_sum += result.outcome.moving_features;
     loop.wait_sum += result.timing.detection_wait;
     loop.totals.push_back(result.timing.total);
     ++loop.frames;
@@ -188,6 +190,9 @@ nlohmann::json summaryOf(const RunOptions& options, const std::filesystem::path&
   summary["detector"] = {{"name", system.detectorDescription()},
                          {"dropped_features_per_frame", loop.dropped_sum / frames},
                          {"wait_ms_per_frame", loop.wait_sum / frames}};
+  summary["motion_evidence"] = {{"on", system.tracker().motionEvidenceOn()},
+                                {"moving_features_per_frame", loop.moving_sum / frames},
+                                {"moving_map_points", system.tracker().movingPointCount()}};
   return summary;
 }
 

@@ -109,6 +109,7 @@ class Tracker {
   // Map points the residuals of the recent frames say are moving (MotionEvidence), detector or
   // not, as of the last frame.
   std::size_t movingPointCount() const { return motion_evidence_.dynamicCount(last_.index); }
+  bool motionEvidenceOn() const { return motion_evidence_.enabled(); }
 
  private:
   bool estimatePose(TrackingOutcome& outcome);
