@@ -17,13 +17,14 @@ int clampedOctave(int octave, const feature::ScaleLevels& pyramid) {
   return std::clamp(octave, 0, pyramid.count() - 1);
 }
 
-// Reprojection chi-square of a world point at feature i of `frame` (its pose set), with the
-// right coordinate when the feature has one; `inverse_sigma2` weighs the pixel error.
+// A chi-square value and its 95 % threshold for the residual's degrees of freedom.
 struct Residual {
   double chi2 = 0.0;
   double threshold = kChi2Mono;
 };
 
+// Reprojection chi-square of a world point at feature i of `frame` (its pose set), with the
+// right coordinate when the feature has one; `inverse_sigma2` weighs the pixel error.
 std::optional<Residual> reprojectionResidual(const Frame& frame, std::size_t i,
                                              const Eigen::Vector3d& X_w, const FrameCamera& camera,
                                              double inverse_sigma2) {
@@ -43,6 +44,12 @@ std::optional<Residual> reprojectionResidual(const Frame& frame, std::size_t i,
   return residual;
 }
 
+// The viewing ray of feature i on the z = 1 plane.
+Eigen::Vector3d ray(const map::FeatureSet& features, std::size_t i, const FrameCamera& camera) {
+  const auto& p = features.undistorted[i];
+  return camera.pinhole.unproject({p.x, p.y}, 1.0);
+}
+
 // Epipolar distance (pixels², weighed) of current feature i from the line of previous feature
 // j; nullopt when the camera did not translate (no epipolar geometry).
 std::optional<Residual> epipolarResidual(const Frame& current, std::size_t i, const Frame& previous,
@@ -51,15 +58,12 @@ std::optional<Residual> epipolarResidual(const Frame& current, std::size_t i, co
   const SE3 T_c_p = *current.T_c_w * previous.T_c_w->inverse();
   const Eigen::Vector3d t = T_c_p.translation();
   if (t.norm() < 1e-6) return std::nullopt;
-  const auto k = camera.intrinsics();
-  const auto& pp = previous.features->undistorted[j];
-  const auto& pc = current.features->undistorted[i];
-  const Eigen::Vector3d x_p((pp.x - k.cx) / k.fx, (pp.y - k.cy) / k.fy, 1.0);
-  const Eigen::Vector3d x_c((pc.x - k.cx) / k.fx, (pc.y - k.cy) / k.fy, 1.0);
+  const Eigen::Vector3d x_p = ray(*previous.features, j, camera);
+  const Eigen::Vector3d x_c = ray(*current.features, i, camera);
   const Eigen::Vector3d line = t.cross(T_c_p.rotation() * x_p);  // E x_p, E = [t]x R
   const double norm = std::hypot(line.x(), line.y());
   if (norm < 1e-12) return std::nullopt;
-  const double distance_px = std::abs(line.dot(x_c)) / norm * k.fx;
+  const double distance_px = std::abs(line.dot(x_c)) / norm * camera.pinhole.fx();
   return Residual{distance_px * distance_px * inverse_sigma2, kChi2Line};
 }
 
@@ -67,14 +71,9 @@ std::optional<Residual> epipolarResidual(const Frame& current, std::size_t i, co
 // moved by the relative pose, or (no depth) its ray rotated.
 std::optional<cv::Point2f> staticPositionInPrevious(const Frame& current, std::size_t i,
                                                     const SE3& T_p_c, const FrameCamera& camera) {
-  const auto k = camera.intrinsics();
-  Eigen::Vector3d X_p;
-  if (current.features->depth[i] > 0) {
-    X_p = T_p_c * current.unprojectCamera(i, k);
-  } else {
-    const auto& p = current.features->undistorted[i];
-    X_p = T_p_c.rotation() * Eigen::Vector3d((p.x - k.cx) / k.fx, (p.y - k.cy) / k.fy, 1.0);
-  }
+  const Eigen::Vector3d X_p = current.features->depth[i] > 0
+                                  ? T_p_c * current.unprojectCamera(i, camera.intrinsics())
+                                  : T_p_c.rotation() * ray(*current.features, i, camera);
   if (X_p.z() <= 1e-6) return std::nullopt;
   const Eigen::Vector2d uv = camera.pinhole.project(X_p);
   return cv::Point2f(static_cast<float>(uv.x()), static_cast<float>(uv.y()));
@@ -115,6 +114,15 @@ int flowMatch(const Frame& current, std::size_t i, const Frame& previous, const 
   return best_index;
 }
 
+// Residual of feature i's map point against the frame's pose.
+std::optional<Residual> mapPointResidual(const Frame& frame, std::size_t i,
+                                         const FrameCamera& camera,
+                                         const feature::ScaleLevels& pyramid) {
+  const int octave = clampedOctave(frame.features->keypoints[i].octave, pyramid);
+  return reprojectionResidual(frame, i, frame.points[i]->position(), camera,
+                              pyramid.inverseSigma2(octave));
+}
+
 }  // namespace
 
 double staticEvidence(double chi2, double chi2_threshold) {
@@ -151,9 +159,7 @@ bool MotionEvidence::fitsPose(const Frame& frame, std::size_t i, const FrameCame
                               const feature::ScaleLevels& pyramid) const {
   const auto& point = frame.points[i];
   if (!point || !frame.T_c_w) return false;
-  const int octave = clampedOctave(frame.features->keypoints[i].octave, pyramid);
-  const auto residual =
-      reprojectionResidual(frame, i, point->position(), camera, pyramid.inverseSigma2(octave));
+  const auto residual = mapPointResidual(frame, i, camera, pyramid);
   return residual && residual->chi2 <= residual->threshold;
 }
 
@@ -186,7 +192,7 @@ MotionVerdict MotionEvidence::update(Frame& current, const Frame& previous,
 }
 
 // Moving things are regions: a cell of a coarse grid where features with evidence of motion
-// are at least as many as those with evidence of rest (and at least min_moving_in_cell) marks
+// are at least as many as those with evidence of rest (and at least region_min_moving) marks
 // every feature in it, so the features of a person that no test reached yet (no map point, no
 // match in the previous frame) make no map point either.
 std::vector<bool> MotionEvidence::movingRegions(const Frame& current,
@@ -236,9 +242,7 @@ void MotionEvidence::updatePointBeliefs(Frame& current, const FrameCamera& camer
   for (std::size_t i = 0; i < current.size(); ++i) {
     const auto& point = current.points[i];
     if (!point || point->isBad() || point->observationCount() < 1) continue;
-    const int octave = clampedOctave(current.features->keypoints[i].octave, pyramid);
-    const auto residual =
-        reprojectionResidual(current, i, point->position(), camera, pyramid.inverseSigma2(octave));
+    const auto residual = mapPointResidual(current, i, camera, pyramid);
     if (!residual) continue;
     double evidence = staticEvidence(residual->chi2, residual->threshold);
     if (!moving_evidence) evidence = std::max(evidence, 0.0);
