@@ -10,6 +10,7 @@ packages=(
   libceres-dev libsuitesparse-dev
   libcli11-dev libspdlog-dev nlohmann-json3-dev libtbb-dev
   libgtest-dev libgmock-dev libbenchmark-dev
+  libcereal-dev          # map files
 )
 
 missing=()

@@ -1,6 +1,7 @@
 #include <memory>
 
 #include "command_registry.h"
+#include "lumaslam/core/error.h"
 #include "run_pipeline.h"
 #include "run_repeat.h"
 
@@ -52,6 +53,14 @@ const bool registered = registerCommand(
                      "written either way")
           ->check(CLI::IsMember({"skip", "stop"}))
           ->capture_default_str();
+      cmd.add_option("--load-map", options->load_map,
+                     "Start from a map saved by --save-map (same camera, ORB settings and "
+                     "vocabulary): the first frame relocalizes in it");
+      cmd.add_flag("--localization", options->localization,
+                   "With --load-map: track against the loaded map, add no keyframes or maps");
+      cmd.add_option("--save-map", options->save_map,
+                     "Write the map (every map of the atlas) to this file at the end, after the "
+                     "results");
       cmd.add_option("--repeat", *repeats,
                      "Run N times into OUT/run_K and report the min/median/max spread")
           ->check(CLI::Range(1, 1000));
@@ -62,6 +71,12 @@ const bool registered = registerCommand(
         if (!enhance->empty()) options->enhance_preset = *enhance;
         if (!detector->empty()) options->detector = *detector;
         if (!vocabulary->empty()) options->vocabulary = *vocabulary;
+        if (options->localization && !options->load_map) {
+          fail("--localization needs a map to localize in (--load-map FILE)");
+        }
+        if (options->save_map && *repeats > 1) {
+          fail("--save-map with --repeat: every run would write the same file");
+        }
         return *repeats > 1 ? runRepeated(*options, *repeats) : runPipeline(*options);
       };
     });

@@ -196,6 +196,33 @@ nlohmann::json summaryOf(const RunOptions& options, const std::filesystem::path&
   return summary;
 }
 
+// The error message, empty when saved or not asked to.
+std::string saveMapIfAsked(System& system, const RunOptions& options) {
+  if (!options.save_map) return {};
+  try {
+    system.saveMap(*options.save_map);
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return {};
+}
+
+nlohmann::json mapFileSummary(const RunOptions& options, const System& system,
+                              std::size_t loaded_keyframes, const std::string& save_error) {
+  const auto path_or_null = [](const std::optional<std::filesystem::path>& path) {
+    return path ? nlohmann::json(path->string()) : nlohmann::json(nullptr);
+  };
+  nlohmann::json result = {
+      {"loaded", path_or_null(options.load_map)},
+      {"loaded_keyframes", loaded_keyframes},
+      {"localization", options.localization},
+      {"keyframes_added", static_cast<long long>(system.keyFrameCount()) -
+                              static_cast<long long>(loaded_keyframes)},
+      {"saved", save_error.empty() ? path_or_null(options.save_map) : nlohmann::json(nullptr)}};
+  if (!save_error.empty()) result["save_error"] = save_error;
+  return result;
+}
+
 // Evaluation against the dataset's ground truth, when it has one, into the summary.
 void evaluateAgainstGroundTruth(io::DatasetReader& reader, const io::Settings& settings,
                                 const Trajectory& trajectory, const std::filesystem::path& out,
@@ -259,6 +286,9 @@ int runPipeline(const RunOptions& options) {
   if (options.no_motion_evidence) system_options.motion_evidence = false;
   system_options.strict_settings = options.strict_settings;
   System system(settings, system_options);
+  if (options.load_map) system.loadMap(*options.load_map);
+  if (options.localization) system.setLocalizationMode(true);
+  const std::size_t loaded_keyframes = system.keyFrameCount();
 
   io::OutputFile timing(options.out / "timing.csv");
   timing.stream()
@@ -278,6 +308,9 @@ int runPipeline(const RunOptions& options) {
   io::writeTrajectory(options.out / "keyframes.txt", system.keyFrameTrajectory());
   auto summary =
       summaryOf(options, settings_path, system, loop, writeMapTrajectories(system, options.out));
+  // After the trajectories, so that a map that cannot be written costs no results.
+  const std::string save_error = saveMapIfAsked(system, options);
+  summary["map_file"] = mapFileSummary(options, system, loaded_keyframes, save_error);
   timing.commit();
   std::printf(
       "%s: %zu frames, %zu tracked, %zu lost, %zu skipped, %zu keyframes, %.1f ms/frame "
@@ -290,6 +323,7 @@ int runPipeline(const RunOptions& options) {
   summary_file.stream() << summary.dump(2) << '\n';
   summary_file.commit();
   std::printf("results in %s\n", options.out.string().c_str());
+  if (!save_error.empty()) fail("{}", save_error);
   return loop.exit_code;
 }
 

@@ -20,6 +20,10 @@ struct RunOptions {
   bool no_loop_closing = false;                     // overrides Loop.closing
   bool no_motion_evidence = false;                  // overrides Dynamic.motionEvidence
   bool strict_settings = false;                     // unknown settings keys are an error
+  // Map files (docs/maps.md): start from a saved map, track without mapping, save at the end.
+  std::optional<std::filesystem::path> load_map;
+  bool localization = false;  // needs load_map
+  std::optional<std::filesystem::path> save_map;
   // A frame that cannot be read or tracked (unreadable image, wrong size, missing depth):
   // skip it with a warning (default), or stop there; either way what was tracked is written.
   enum class BadFrame { Skip, Stop };

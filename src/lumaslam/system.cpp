@@ -19,6 +19,7 @@
 #include "lumaslam/loop/loop_closer.h"
 #include "lumaslam/loop/place_recognition.h"
 #include "lumaslam/loop/vocabulary_choice.h"
+#include "lumaslam/loop/vocabulary_io.h"
 #include "lumaslam/mapping/local_mapper.h"
 #include "lumaslam/track/feature_subset.h"
 #include "lumaslam/track/frame_builder.h"
@@ -128,6 +129,7 @@ System::System(const io::Settings& settings, const SystemOptions& options)
         places_->vocabulary().branching(), places_->vocabulary().depth(), msSince(start));
     map_->setKeyFrameIndex(places_);
     vocabulary_description_ = vocabulary.file.string();
+    vocabulary_fingerprint_ = loop::vocabularyFingerprint(places_->vocabulary());
   }
 
   const auto camera = frameCameraFrom(settings_, rectifier_.get());
@@ -185,6 +187,7 @@ System::~System() {
 }
 
 void System::shutdown() {
+  shut_down_ = true;
   if (detector_) detector_->stop();
   if (mapper_) mapper_->shutdown();
   if (loop_closer_) loop_closer_->shutdown();  // after the mapper: it feeds the closer
@@ -367,6 +370,7 @@ void System::removeDynamicFeatures(track::Frame& frame, const cv::Mat& depth_m,
 }
 
 FrameResult System::track(const SensorFrame& input) {
+  if (shut_down_) fail("frame {}: track() after shutdown() or saveMap()", input.index);
   const auto start = Clock::now();
   FrameResult result;
   std::optional<track::Frame> frame;
@@ -463,6 +467,58 @@ std::size_t System::keyFrameCount() const {
 
 std::size_t System::mapPointCount() const {
   return map_->mapPointCount();
+}
+
+map::MapFingerprint System::mapFingerprint() const {
+  const auto& camera = frameCamera();
+  map::MapFingerprint fingerprint;
+  fingerprint.sensor = std::string(io::toString(settings_.sensor));
+  fingerprint.image_width = camera.size().width;
+  fingerprint.image_height = camera.size().height;
+  fingerprint.camera = camera.intrinsics();
+  const auto orb = orbSettingsFrom(settings_);
+  fingerprint.orb_features = orb.nFeatures;
+  fingerprint.orb_scale_factor = orb.scaleFactor;
+  fingerprint.orb_levels = orb.nLevels;
+  fingerprint.orb_ini_fast = orb.iniThFAST;
+  fingerprint.orb_min_fast = orb.minThFAST;
+  fingerprint.vocabulary = vocabulary_fingerprint_;
+  if (places_) {
+    fingerprint.vocabulary_name =
+        std::filesystem::path(vocabulary_description_).filename().string();
+  }
+  return fingerprint;
+}
+
+void System::saveMap(const std::filesystem::path& file) {
+  shutdown();
+  std::lock_guard lock(map_->updateMutex());
+  map::saveMapFile(*map_, mapFingerprint(), file);
+  spdlog::info("{}: map saved ({} keyframes, {} points)", file.string(), map_->keyFrameCount(),
+               map_->mapPointCount());
+}
+
+void System::loadMap(const std::filesystem::path& file) {
+  if (shut_down_) fail("{}: loadMap() after shutdown()", file.string());
+  if (tracker_->state() != track::TrackingState::NotInitialized || map_->keyFrameCount() > 0) {
+    fail("{}: loadMap() must come before the first frame", file.string());
+  }
+  const auto start = Clock::now();
+  std::lock_guard lock(map_->updateMutex());
+  map::loadMapFile(file, mapFingerprint(), frame_builder_->pyramid(), *map_);
+  tracker_->startInLoadedMap();
+  spdlog::info("{}: map loaded in {:.0f} ms ({} keyframes, {} points){}", file.string(),
+               msSince(start), map_->keyFrameCount(), map_->mapPointCount(),
+               places_ ? "" : "; no vocabulary: relocalization is off");
+}
+
+void System::setLocalizationMode(bool on) {
+  std::lock_guard lock(map_->updateMutex());
+  tracker_->setLocalizationMode(on);
+}
+
+bool System::localizationMode() const {
+  return tracker_->localizationMode();
 }
 
 }  // namespace lumaslam

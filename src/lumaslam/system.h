@@ -13,6 +13,7 @@
 
 #include "lumaslam/core/pose.h"
 #include "lumaslam/io/settings.h"
+#include "lumaslam/map/map_file.h"
 #include "lumaslam/track/tracker.h"
 
 namespace lumaslam {
@@ -103,7 +104,21 @@ class System {
                         const cv::Mat& depth, const cv::Mat& dynamic_mask = cv::Mat());
 
   // Waits for local mapping to finish and stops its thread. Idempotent; the destructor calls it.
+  // track() after it is an Error.
   void shutdown();
+
+  // Map files (map/map_file.h, docs/maps.md); both throw Error naming the file and the problem.
+  // saveMap first finishes local mapping and loop closing (shutdown()), then writes the atlas
+  // atomically. loadMap only before the first frame: the map must be empty, the file made with
+  // this camera, ORB settings and vocabulary; tracking then starts lost, so that the first
+  // frame relocalizes in the loaded map.
+  void saveMap(const std::filesystem::path& file);
+  void loadMap(const std::filesystem::path& file);
+  // Track against the map without adding keyframes or maps (Tracker::setLocalizationMode).
+  void setLocalizationMode(bool on);
+  bool localizationMode() const;
+  // What a map file made by this System records of its settings (camera, ORB, vocabulary).
+  map::MapFingerprint mapFingerprint() const;
 
   // Poses of the left / rgb camera as calibrated (for a rectified pair, converted back from
   // the rectified camera): T_w_c, world = that camera at the first keyframe.
@@ -161,6 +176,8 @@ class System {
   std::unique_ptr<detect::DetectionWorker> detector_;
   std::string detector_description_ = "none";
   std::string vocabulary_description_ = "none";
+  std::uint64_t vocabulary_fingerprint_ = 0;  // loop::vocabularyFingerprint, 0 without one
+  bool shut_down_ = false;
   std::unique_ptr<track::FrameBuilder> frame_builder_;
   std::unique_ptr<mapping::LocalMapper> mapper_;
   std::unique_ptr<track::Tracker> tracker_;

@@ -9,6 +9,7 @@
 #include <string>
 #include <string_view>
 
+#include "lumaslam/core/checksum.h"
 #include "lumaslam/core/error.h"
 
 namespace lumaslam::loop {
@@ -31,34 +32,15 @@ struct Header {
 };
 static_assert(sizeof(Header) == 40);
 
-// FNV-1a over 8-byte little-endian chunks (then the tail bytes): fast enough to check 50 MB
-// in a few milliseconds.
-class Checksum {
- public:
-  void update(const void* data, std::size_t size) {
-    const auto* bytes = static_cast<const std::uint8_t*>(data);
-    std::size_t i = 0;
-    for (; i + 8 <= size; i += 8) {
-      std::uint64_t chunk;
-      std::memcpy(&chunk, bytes + i, 8);
-      mix(chunk);
-    }
-    for (; i < size; ++i) mix(bytes[i]);
-  }
-  std::uint64_t value() const { return hash_; }
-
- private:
-  void mix(std::uint64_t value) { hash_ = (hash_ ^ value) * 0x100000001b3ULL; }
-  std::uint64_t hash_ = 0xcbf29ce484222325ULL;
-};
+using core::Checksum;
 
 template <typename T>
 std::size_t bytesOf(const std::vector<T>& v) {
   return v.size() * sizeof(T);
 }
 
-template <typename F>
-void forEachArray(VocabularyData& d, F&& f) {
+template <typename Data, typename F>  // Data: VocabularyData, const or not
+void forEachArray(Data& d, F&& f) {
   f(d.first_child.data(), bytesOf(d.first_child));
   f(d.child_count.data(), bytesOf(d.child_count));
   f(d.node_word.data(), bytesOf(d.node_word));
@@ -364,6 +346,16 @@ bool isBinaryVocabulary(const std::filesystem::path& file) {
 
 Vocabulary loadAnyVocabulary(const std::filesystem::path& file) {
   return isBinaryVocabulary(file) ? loadVocabulary(file) : loadDbow2Text(file);
+}
+
+std::uint64_t vocabularyFingerprint(const Vocabulary& vocabulary) {
+  const VocabularyData& data = vocabulary.data();
+  Checksum checksum;
+  const std::uint32_t shape[2] = {static_cast<std::uint32_t>(data.branching),
+                                  static_cast<std::uint32_t>(data.depth)};
+  checksum.update(shape, sizeof(shape));
+  forEachArray(data, [&](const void* p, std::size_t size) { checksum.update(p, size); });
+  return checksum.value();
 }
 
 }  // namespace lumaslam::loop

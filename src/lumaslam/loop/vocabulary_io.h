@@ -12,6 +12,7 @@
 // line per node except the root, "parentId isLeaf d0 ... d31 weight", a node's id being its
 // line number after the header (root = 0). Only L1 scoring and TF-IDF weighting (0 0) are
 // accepted, as those are what ORB-SLAM uses.
+#include <cstdint>
 #include <filesystem>
 
 #include "lumaslam/loop/vocabulary.h"
@@ -28,5 +29,9 @@ void saveDbow2Text(const Vocabulary& vocabulary, const std::filesystem::path& fi
 // Our binary format if the file starts with its magic, DBoW2 text otherwise.
 Vocabulary loadAnyVocabulary(const std::filesystem::path& file);
 bool isBinaryVocabulary(const std::filesystem::path& file);
+
+// What a map file records of the vocabulary its keyframes were indexed with: the checksum of
+// its tree (k, L, nodes, words, weights), the same for a binary file and its DBoW2 text.
+std::uint64_t vocabularyFingerprint(const Vocabulary& vocabulary);
 
 }  // namespace lumaslam::loop

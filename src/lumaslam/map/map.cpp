@@ -12,14 +12,33 @@ void Map::addKeyFrame(const std::shared_ptr<KeyFrame>& keyframe) {
     origins_.try_emplace(keyframe->mapId(), keyframe->id());
     keyframes_[keyframe->id()] = keyframe;
   }
-  if (index_) index_->add(keyframe);
+  // A reset map's keyframes (in a loaded map file) stay out of place recognition.
+  if (index_ && keyframe->mapId() != kDiscardedMap) index_->add(keyframe);
+}
+
+Map::Bookkeeping Map::bookkeeping() const {
+  std::shared_lock lock(mutex_);
+  Bookkeeping result{next_keyframe_id_.load(), next_point_id_.load(), next_map_id_.load(),
+                     {origins_.begin(), origins_.end()}};
+  std::sort(result.origins.begin(), result.origins.end());
+  return result;
+}
+
+void Map::restoreBookkeeping(const Bookkeeping& bookkeeping) {
+  std::unique_lock lock(mutex_);
+  next_keyframe_id_ = bookkeeping.next_keyframe_id;
+  next_point_id_ = bookkeeping.next_point_id;
+  next_map_id_ = bookkeeping.next_map_id;
+  origins_ = {bookkeeping.origins.begin(), bookkeeping.origins.end()};
 }
 
 void Map::setKeyFrameIndex(std::shared_ptr<KeyFrameIndex> index) {
   index_ = std::move(index);
   if (!index_) return;
   index_->clear();
-  for (const auto& keyframe : keyFrames()) index_->add(keyframe);
+  for (const auto& keyframe : keyFrames()) {
+    if (keyframe->mapId() != kDiscardedMap) index_->add(keyframe);
+  }
 }
 
 void Map::addMapPoint(const std::shared_ptr<MapPoint>& point) {

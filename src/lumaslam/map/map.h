@@ -74,6 +74,18 @@ class Map {
   void replaceMapPoint(const std::shared_ptr<MapPoint>& old_point,
                        const std::shared_ptr<MapPoint>& new_point);
 
+  // Map files (map_file.h): the id counters and each map's origin, as saved and restored.
+  struct Bookkeeping {
+    Id next_keyframe_id = 0;
+    Id next_point_id = 0;
+    MapId next_map_id = 1;
+    std::vector<std::pair<MapId, Id>> origins;  // sorted by map id
+  };
+  Bookkeeping bookkeeping() const;
+  // After every keyframe of a loaded map was added (which records the first keyframe of each
+  // map id as its origin, not knowing about merges).
+  void restoreBookkeeping(const Bookkeeping& bookkeeping);
+
   std::mutex& updateMutex() const { return update_mutex_; }
   void clear();
 

@@ -14,6 +14,10 @@ MapPoint::MapPoint(Id id, const Eigen::Vector3d& position_w,
       reference_(reference),
       position_w_(position_w) {}
 
+MapPoint::MapPoint(Id id, const Eigen::Vector3d& position_w, Id reference_id,
+                   const std::shared_ptr<KeyFrame>& reference)
+    : id_(id), reference_id_(reference_id), reference_(reference), position_w_(position_w) {}
+
 std::shared_ptr<KeyFrame> MapPoint::referenceKeyFrame() const {
   return reference_.lock();
 }
@@ -148,6 +152,21 @@ int MapPoint::predictScale(double distance, const feature::ScaleLevels& pyramid)
   const int level =
       static_cast<int>(std::ceil(std::log(max_distance / distance) / pyramid.logScaleFactor()));
   return std::clamp(level, 0, pyramid.count() - 1);
+}
+
+MapPoint::DerivedState MapPoint::derivedState() const {
+  std::lock_guard lock(mutex_);
+  return {normal_, min_distance_, max_distance_, descriptor_, visible_.load(), found_.load()};
+}
+
+void MapPoint::restoreDerivedState(const DerivedState& state) {
+  std::lock_guard lock(mutex_);
+  normal_ = state.normal;
+  min_distance_ = state.min_distance;
+  max_distance_ = state.max_distance;
+  descriptor_ = state.descriptor;
+  visible_ = state.visible;
+  found_ = state.found;
 }
 
 double MapPoint::foundRatio() const {

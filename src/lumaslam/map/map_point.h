@@ -20,6 +20,10 @@ class KeyFrame;
 class MapPoint {
  public:
   MapPoint(Id id, const Eigen::Vector3d& position_w, const std::shared_ptr<KeyFrame>& reference);
+  // A point read from a map file: its reference keyframe may have been retired (null) but the
+  // id is kept.
+  MapPoint(Id id, const Eigen::Vector3d& position_w, Id reference_id,
+           const std::shared_ptr<KeyFrame>& reference);
 
   Id id() const { return id_; }
   Id referenceKeyFrameId() const { return reference_id_; }
@@ -52,6 +56,19 @@ class MapPoint {
   void increaseVisible(int n = 1) { visible_ += n; }
   void increaseFound(int n = 1) { found_ += n; }
   double foundRatio() const;
+
+  // What updateNormalAndDepth / computeDistinctiveDescriptor and tracking derived, as of now:
+  // map files store it and restore it as it was, so that a loaded map saves to the same bytes.
+  struct DerivedState {
+    Eigen::Vector3d normal = Eigen::Vector3d::Zero();
+    double min_distance = 0.0;
+    double max_distance = 0.0;
+    Descriptor descriptor{};
+    int visible = 1;
+    int found = 1;
+  };
+  DerivedState derivedState() const;
+  void restoreDerivedState(const DerivedState& state);
 
   bool isBad() const { return bad_.load(); }
   void markBad() { bad_.store(true); }

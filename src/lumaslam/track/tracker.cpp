@@ -87,6 +87,7 @@ TrackingOutcome Tracker::track(Frame frame) {
 // then the keyframe decision; a new map when lost long enough. Returns whether it was tracked.
 bool Tracker::estimatePose(TrackingOutcome& outcome) {
   if (state_ == TrackingState::NotInitialized) {
+    if (localization_only_) return false;  // no map to localize in
     const bool ok = initialize();  // monocular: over several frames
     outcome.new_keyframe = ok;
     outcome.new_map = ok && active_map_ != 0;
@@ -207,6 +208,7 @@ bool Tracker::recoverWhileLost(TrackingOutcome& outcome) {
 // Lost for new_map_after_s on a frame that could start a map by itself (the dark frames of a
 // blackout cannot: the first lit frame still tries relocalization first).
 bool Tracker::newMapDue() const {
+  if (localization_only_) return false;
   if (params_.new_map_after_s < 0 || !lost_since_) return false;
   if (current_.timestamp - *lost_since_ < params_.new_map_after_s) return false;
   if (camera_.bf <= 0.0) {
@@ -221,6 +223,10 @@ bool Tracker::resetDue() const {
   return camera_.bf <= 0.0 && reference_ && reference_->mapId() != map::kDiscardedMap &&
          map_->keyFrameCountOf(reference_->mapId()) <
              static_cast<std::size_t>(params_.monocular_reset_below_keyframes);
+}
+
+void Tracker::startInLoadedMap() {
+  state_ = TrackingState::Lost;
 }
 
 // The old map stays in the atlas (its frames keep their poses); tracking starts over in a new
@@ -767,6 +773,7 @@ void Tracker::cullDynamicPoints() {
 }
 
 bool Tracker::needNewKeyFrame() const {
+  if (localization_only_) return false;
   const std::size_t keyframes =
       map_->keyFrameCountOf(reference_ ? reference_->mapId() : active_map_);
   const int min_observations = keyframes <= 2 ? 2 : 3;

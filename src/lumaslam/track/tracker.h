@@ -101,6 +101,16 @@ class Tracker {
     relocalizer_ = std::move(relocalizer);
   }
 
+  // A map was loaded into the (empty) map before the first frame (map/map_file.h): tracking
+  // starts lost, so the first frame relocalizes in it; unless in localization mode, a new map
+  // of the atlas starts after new_map_after_s without relocalization, as after any loss.
+  void startInLoadedMap();
+  // Localization mode (ORB-SLAM's ActivateLocalizationMode): frames are tracked against the
+  // map and relocalized when lost, but make no keyframe and start no map (an empty map stays
+  // empty: every frame is lost). Switchable between frames.
+  void setLocalizationMode(bool on) { localization_only_ = on; }
+  bool localizationMode() const { return localization_only_; }
+
   TrackingState state() const { return state_; }
   const TrajectoryRecorder& trajectory() const { return recorder_; }
   const Frame& lastFrame() const { return last_; }
@@ -173,6 +183,7 @@ class Tracker {
   map::MapId active_map_ = 0;         // the map new keyframes start in (follows merges)
   DynamicPointMemory dynamic_memory_;
   MotionEvidence motion_evidence_;
+  bool localization_only_ = false;
   TrajectoryRecorder recorder_;
   std::unique_ptr<MonocularInitializer> monocular_initializer_;
   std::shared_ptr<const FrameRelocalizer> relocalizer_;

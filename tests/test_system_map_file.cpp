@@ -1,0 +1,152 @@
+// Issue 17 item 1: map files. A room mapped on one trajectory, saved, and localized in on
+// another trajectory through the same room (same seed: same room; halfsphere starts where
+// the xyz shake is); a map saved, loaded and saved again is the same bytes; bad map files are
+// clear errors and load nothing.
+#include <fstream>
+#include <iterator>
+
+#include <gtest/gtest.h>
+
+#include "lumaslam/core/error.h"
+#include "test_paths.h"
+#include "test_system_run.h"
+
+namespace lumaslam::test {
+namespace {
+
+struct MappedRoom {
+  std::filesystem::path file;
+  SE3 T_gt_world;  // the map's world (first camera) in the generator's world
+};
+
+SystemOptions quietOptions() {
+  SystemOptions options;
+  options.enhance_preset = "off";
+  options.sequential = true;
+  return options;
+}
+
+MappedRoom mapRoom(const std::filesystem::path& file, int frames) {
+  const synth::SequenceRenderer sequence(synth::findPreset("halfsphere-rgbd"), frames, 1);
+  System system(presetSettings(sequence), quietOptions());
+  for (int i = 0; i < frames; ++i) system.track(sensorFrame(sequence.render(i)));
+  system.saveMap(file);
+  return {file, sequence.render(0).cam0.T_w_c};
+}
+
+std::string readBytes(const std::filesystem::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+void writeBytes(const std::filesystem::path& file, const std::string& bytes) {
+  std::ofstream(file, std::ios::binary) << bytes;
+}
+
+io::Settings xyzSettings(const SettingsEdit& edit = {}) {
+  const synth::SequenceRenderer sequence(synth::findPreset("xyz-rgbd"), 1, 1);
+  return presetSettings(sequence, edit);
+}
+
+// The error loadMap throws (empty if none); the System must stay usable and empty.
+std::string loadError(const std::filesystem::path& file, const io::Settings& settings,
+                      SystemOptions options = quietOptions()) {
+  System system(settings, options);
+  try {
+    system.loadMap(file);
+  } catch (const Error& e) {
+    EXPECT_EQ(system.keyFrameCount(), 0U) << "half-loaded after: " << e.what();
+    EXPECT_EQ(system.mapPointCount(), 0U);
+    return e.what();
+  }
+  return {};
+}
+
+TEST(SystemMapFile, SaveLoadSaveIsByteIdentical) {
+  TempDir dir("map_file");
+  const auto room = mapRoom(dir.path() / "room.map", 60);
+  System system(xyzSettings(), quietOptions());
+  system.loadMap(room.file);
+  EXPECT_GT(system.keyFrameCount(), 2U);
+  EXPECT_GT(system.mapPointCount(), 500U);
+  system.saveMap(dir.path() / "again.map");
+  const std::string first = readBytes(room.file);
+  EXPECT_GT(first.size(), 10000U);
+  EXPECT_TRUE(first == readBytes(dir.path() / "again.map"));
+}
+
+TEST(SystemMapFile, LocalizesOnAnotherTrajectoryWithoutAddingKeyframes) {
+  TempDir dir("map_file");
+  const auto room = mapRoom(dir.path() / "room.map", 300);
+  const int frames = 300;
+  const synth::SequenceRenderer sequence(synth::findPreset("xyz-rgbd"), frames, 1);
+  System system(presetSettings(sequence), quietOptions());
+  system.loadMap(room.file);
+  system.setLocalizationMode(true);
+  const std::size_t keyframes = system.keyFrameCount();
+  Trajectory ground_truth;  // in the first run's world
+  std::size_t localized = 0;
+  for (int i = 0; i < frames; ++i) {
+    const auto frame = sequence.render(i);
+    const auto result = system.track(sensorFrame(frame));
+    if (result.outcome.state == track::TrackingState::Ok) ++localized;
+    EXPECT_FALSE(result.outcome.new_keyframe) << "frame " << i;
+    ground_truth.push_back({frame.timestamp(), room.T_gt_world.inverse() * frame.cam0.T_w_c});
+  }
+  system.shutdown();
+  EXPECT_GE(static_cast<double>(localized), 0.95 * frames);
+  EXPECT_EQ(system.keyFrameCount(), keyframes);
+  eval::EvaluationOptions no_alignment;
+  no_alignment.align = eval::AlignMode::None;
+  const auto report = eval::evaluate(system.frameTrajectory(), ground_truth, no_alignment);
+  spdlog::info("localized {}/{}, ATE {:.4f} m in the map's frame", localized, frames,
+               report.ate.stats.rmse);
+  EXPECT_LE(report.ate.stats.rmse, 0.01);
+}
+
+TEST(SystemMapFile, BadFilesAreClearErrorsAndLoadNothing) {
+  TempDir dir("map_file");
+  const auto room = mapRoom(dir.path() / "room.map", 30);
+  const std::string bytes = readBytes(room.file);
+  const auto settings = xyzSettings();
+
+  std::string corrupt = bytes;
+  corrupt[bytes.size() / 2] = static_cast<char>(corrupt[bytes.size() / 2] ^ 0x5A);
+  writeBytes(dir.path() / "corrupt.map", corrupt);
+  EXPECT_NE(loadError(dir.path() / "corrupt.map", settings).find("checksum mismatch"),
+            std::string::npos);
+
+  writeBytes(dir.path() / "truncated.map", bytes.substr(0, bytes.size() - 100));
+  EXPECT_NE(loadError(dir.path() / "truncated.map", settings).find("truncated"), std::string::npos);
+
+  writeBytes(dir.path() / "foreign.map", "# TUM trajectory\n1.0 0 0 0 0 0 0 1\n");
+  EXPECT_NE(loadError(dir.path() / "foreign.map", settings).find("not a lumaslam map file"),
+            std::string::npos);
+
+  EXPECT_NE(loadError(dir.path() / "missing.map", settings).find("cannot open"), std::string::npos);
+
+  const auto other_camera = xyzSettings([](std::string yaml) {
+    const auto at = yaml.find("Camera.fx:");
+    return yaml.replace(at, yaml.find('\n', at) - at, "Camera.fx: 500.0");
+  });
+  const std::string camera_error = loadError(room.file, other_camera);
+  EXPECT_NE(camera_error.find("camera fx"), std::string::npos) << camera_error;
+
+  SystemOptions no_vocabulary = quietOptions();
+  no_vocabulary.vocabulary = "none";
+  const std::string vocabulary_error = loadError(room.file, settings, no_vocabulary);
+  EXPECT_NE(vocabulary_error.find("vocabulary"), std::string::npos) << vocabulary_error;
+  EXPECT_TRUE(loadError(room.file, settings).empty());
+}
+
+TEST(SystemMapFile, LoadAfterTheFirstFrameIsAnError) {
+  TempDir dir("map_file");
+  const auto room = mapRoom(dir.path() / "room.map", 30);
+  const synth::SequenceRenderer sequence(synth::findPreset("xyz-rgbd"), 1, 1);
+  System system(presetSettings(sequence), quietOptions());
+  system.track(sensorFrame(sequence.render(0)));
+  EXPECT_THROW(system.loadMap(room.file), Error);
+}
+
+}  // namespace
+}  // namespace lumaslam::test
