@@ -149,7 +149,7 @@ VocabularyData toData(const std::vector<TextNode>& nodes, const std::vector<std:
 }  // namespace
 
 void saveVocabulary(const Vocabulary& vocabulary, const std::filesystem::path& file) {
-  VocabularyData data = vocabulary.data();  // copy: forEachArray wants non-const pointers
+  const VocabularyData& data = vocabulary.data();
   Header header;
   header.branching = static_cast<std::uint32_t>(data.branching);
   header.depth = static_cast<std::uint32_t>(data.depth);
