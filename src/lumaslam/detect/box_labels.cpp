@@ -5,17 +5,10 @@
 #include <sstream>
 
 #include "lumaslam/core/error.h"
+#include "lumaslam/core/read_file.h"
 
 namespace lumaslam::detect {
 namespace {
-
-std::string readText(const std::filesystem::path& file) {
-  std::ifstream in(file);
-  if (!in) fail("{}: cannot open label file", file.string());
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
 
 // Text of the first <tag>...</tag> in `xml`, or empty.
 std::string element(const std::string& xml, const std::string& tag) {
@@ -39,7 +32,7 @@ float coordinate(const std::string& object, const std::string& tag,
 }  // namespace
 
 std::map<std::string, std::vector<LabeledBox>> readBoxList(const std::filesystem::path& file) {
-  std::istringstream in(readText(file));
+  std::istringstream in(core::readWholeFile(file, "label file"));
   std::map<std::string, std::vector<LabeledBox>> labels;
   std::string line;
   int line_number = 0;
@@ -64,7 +57,7 @@ std::map<std::string, std::vector<LabeledBox>> readBoxList(const std::filesystem
 }
 
 VocAnnotation readVocAnnotation(const std::filesystem::path& file) {
-  const std::string xml = readText(file);
+  const std::string xml = core::readWholeFile(file, "label file");
   VocAnnotation annotation;
   annotation.filename = element(xml, "filename");
   if (annotation.filename.empty()) fail("{}: VOC annotation has no <filename>", file.string());

@@ -11,6 +11,7 @@
 
 #include "lumaslam/core/checksum.h"
 #include "lumaslam/core/error.h"
+#include "lumaslam/core/read_file.h"
 
 namespace lumaslam::loop {
 
@@ -47,18 +48,6 @@ void forEachArray(Data& d, F&& f) {
   f(d.descriptors.data(), bytesOf(d.descriptors));
   f(d.word_node.data(), bytesOf(d.word_node));
   f(d.word_weight.data(), bytesOf(d.word_weight));
-}
-
-std::string readWholeFile(const std::filesystem::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  if (!in) fail("{}: cannot open vocabulary file", file.string());
-  std::string text;
-  in.seekg(0, std::ios::end);
-  text.resize(static_cast<std::size_t>(in.tellg()));
-  in.seekg(0);
-  in.read(text.data(), static_cast<std::streamsize>(text.size()));
-  if (!in) fail("{}: cannot read vocabulary file", file.string());
-  return text;
 }
 
 // Splits on spaces/tabs; at most `max` fields (one more means "too many").
@@ -230,7 +219,7 @@ Vocabulary loadVocabulary(const std::filesystem::path& file) {
 
 Vocabulary loadDbow2Text(const std::filesystem::path& file) {
   const std::string name = file.string();
-  const std::string text = readWholeFile(file);
+  const std::string text = core::readWholeFile(file, "vocabulary file");
   std::string_view rest(text);
   std::size_t line_number = 0;
   const auto nextLine = [&](std::string_view& line) {

@@ -13,6 +13,7 @@
 
 #include "lumaslam/core/checksum.h"
 #include "lumaslam/core/error.h"
+#include "lumaslam/core/read_file.h"
 #include "lumaslam/io/output_file.h"
 #include "lumaslam/map/map_file_records.h"
 
@@ -173,15 +174,6 @@ std::string encode(const MapFingerprint& fingerprint, MapRecord& record) {
   std::string bytes(sizeof(header), '\0');
   std::memcpy(bytes.data(), &header, sizeof(header));
   return bytes + payload;
-}
-
-std::string readFile(const std::filesystem::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  if (!in) fail("{}: cannot open map file", file.string());
-  std::ostringstream content;
-  content << in.rdbuf();
-  if (in.bad()) fail("{}: error while reading the map file", file.string());
-  return content.str();
 }
 
 // The payload after the header checks: a clear message for each way a file can be wrong.
@@ -420,7 +412,7 @@ void loadMapFile(const std::filesystem::path& file, const MapFingerprint& run,
                  std::shared_ptr<const feature::ScaleLevels> pyramid, Map& map) {
   const std::string name = file.string();
   if (map.keyFrameCount() > 0) fail("{}: a map file can only be loaded into an empty map", name);
-  const Decoded decoded = decode(readFile(file), name);
+  const Decoded decoded = decode(core::readWholeFile(file, "map file"), name);
   if (const auto differences = decoded.fingerprint.differences(run); !differences.empty()) {
     std::string lines;
     for (const auto& d : differences) lines += "\n  " + d;
@@ -435,7 +427,7 @@ void loadMapFile(const std::filesystem::path& file, const MapFingerprint& run,
 
 MapFileInfo readMapFileInfo(const std::filesystem::path& file) {
   const std::string name = file.string();
-  const std::string bytes = readFile(file);
+  const std::string bytes = core::readWholeFile(file, "map file");
   const Decoded decoded = decode(bytes, name);
   checkStructure(decoded.record, name);
   MapFileInfo info;
