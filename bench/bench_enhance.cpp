@@ -186,7 +186,7 @@ void BM_EnhancePipelineReference(benchmark::State& state, const std::string& pre
 
 // A 752x480 gray stereo pair (the right image 10 % darker) with `best`; arg: 0 independent
 // (two enhance calls), 1 decisions (left plan, right tables from its own histograms), 2 shared
-// (left plan applied to both). Sequential here; the System runs the right image beside the left.
+// (left plan applied to both). Sequential here; the Pipeline runs the right image beside the left.
 void BM_EnhanceStereoPair(benchmark::State& state) {
   cv::setNumThreads(1);
   const cv::Mat left = benchFrame(752, 480, 1);

@@ -58,7 +58,7 @@ track::FrameCamera frameCameraOf(const camera::StereoRectifier& rectifier) {
 }
 
 // Argument: enhancement preset applied to both images first (each with its own Enhancer, as
-// System does), to count what it does to the number of stereo matches.
+// Pipeline does), to count what it does to the number of stereo matches.
 const char* const kPresets[] = {"off", "best", "clahe", "paper"};
 
 cv::Mat enhanced(const cv::Mat& image, const char* preset) {

@@ -1,9 +1,9 @@
 // Per-frame cost of RGB-D tracking without enhancement and detection (issue 5's speed target:
-// median <= 15 ms at 640x480 with 1000 features): System::track over frames of the synthetic
+// median <= 15 ms at 640x480 with 1000 features): Pipeline::track over frames of the synthetic
 // xyz-rgbd sequence rendered in memory, local mapping in its own thread as `lumaslam run`
 // does it. The reference in the same process is cv::ORB (1000 features) on the same frames.
 // CPU time is the calling thread's (feature extraction + tracking); the counters give the
-// median per-frame stage times that System reports (wall clock, so they include waiting for
+// median per-frame stage times that Pipeline reports (wall clock, so they include waiting for
 // the cores under load).
 #include <algorithm>
 #include <memory>
@@ -18,7 +18,7 @@
 #include "lumaslam/io/settings.h"
 #include "lumaslam/synth/dataset_writer.h"
 #include "lumaslam/synth/sequence.h"
-#include "lumaslam/system.h"
+#include "lumaslam/pipeline.h"
 
 namespace {
 
@@ -59,13 +59,13 @@ double median(std::vector<double> values) {
   return values[values.size() / 2];
 }
 
-// One iteration = the whole sequence through a fresh System; time is reported per frame.
+// One iteration = the whole sequence through a fresh Pipeline; time is reported per frame.
 void BM_TrackRgbdSequence(benchmark::State& state) {
   const RenderedSequence& sequence = xyzRgbd();
   const auto file = std::make_shared<const core::SettingsFile>(
       core::SettingsFile::fromString(synth::settingsYaml(*sequence.renderer), "xyz-rgbd.yaml"));
   const io::Settings settings = io::Settings::fromFile(file);
-  SystemOptions options;
+  PipelineOptions options;
   options.enhance_preset = "off";
   options.detector = "none";
   std::vector<double> features, tracking, total;
@@ -76,7 +76,7 @@ void BM_TrackRgbdSequence(benchmark::State& state) {
     tracking.clear();
     total.clear();
     tracked = 0;
-    auto system = std::make_unique<System>(settings, options);
+    auto system = std::make_unique<Pipeline>(settings, options);
     state.ResumeTiming();
     for (const SensorFrame& frame : sequence.frames) {
       const FrameResult result = system->track(frame);

@@ -1,5 +1,5 @@
 #pragma once
-// The `loop-stereo` loop sequence of the System loop tests: one lap of the room, then part of
+// The `loop-stereo` loop sequence of the Pipeline loop tests: one lap of the room, then part of
 // a second lap rendered from other viewpoints (the same room and trajectory sampled with one
 // frame more), so that the camera comes back to where the map started with several keyframes
 // in a row. A run with loop closing on or off, as stereo or as monocular (left camera only),
@@ -47,11 +47,11 @@ struct LoopRun {
 
 inline LoopRun runLoop(const LoopInput& input, bool loop_closing,
                        std::optional<io::SensorType> sensor = std::nullopt) {
-  SystemOptions options;
+  PipelineOptions options;
   options.enhance_preset = "off";
   options.sequential = true;
   options.loop_closing = loop_closing;
-  System system(presetSettings(input.lap, {}, sensor), options);
+  Pipeline system(presetSettings(input.lap, {}, sensor), options);
   Trajectory ground_truth;
   LoopRun result;
   for (int i = 0; i < input.frames(); ++i) {

@@ -1,6 +1,6 @@
 // `lumaslam run` on stereo data: the synthetic EuRoC-format sequence `lumaslam synth` writes
 // (rectified pair), the real EuRoC V1_01 excerpt with configs/euroc_stereo.yaml (rectified by
-// the System), and stereo settings on a dataset without right images.
+// the Pipeline), and stereo settings on a dataset without right images.
 #include <gtest/gtest.h>
 
 #include <fstream>

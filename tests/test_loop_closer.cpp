@@ -322,7 +322,7 @@ TEST(LoopCloser, CorrectsOnItsOwnThreadWhileATrackingThreadReadsTheMap) {
 TEST(LoopCloser, ANewLoopAbortsTheRunningGlobalBundleAdjustment) {
   DriftedLoopMap world;
   const double before = world.keyframeRmse();
-  // The database grows with the keyframes handed to the closer, as in the System (the
+  // The database grows with the keyframes handed to the closer, as in the Pipeline (the
   // world's database already knows the second lap: a first-lap keyframe would find it).
   loop::KeyFrameDatabase database;
   auto params = sequentialParams();

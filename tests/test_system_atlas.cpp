@@ -34,10 +34,10 @@ struct AtlasRun {
 
 AtlasRun runWithBlackout(const test::LoopInput& input, const test::SettingsEdit& edit = {},
                          std::optional<io::SensorType> sensor = std::nullopt) {
-  SystemOptions options;
+  PipelineOptions options;
   options.enhance_preset = "off";
   options.sequential = true;
-  System system(test::presetSettings(input.lap, edit, sensor), options);
+  Pipeline system(test::presetSettings(input.lap, edit, sensor), options);
   Trajectory ground_truth;
   AtlasRun run;
   for (int i = 0; i < input.frames(); ++i) {

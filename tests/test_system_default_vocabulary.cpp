@@ -1,4 +1,4 @@
-// A System built with default settings and options loads the default vocabulary (data/
+// A Pipeline built with default settings and options loads the default vocabulary (data/
 // vocabulary/): relocalization and loop closing are on. "none" and Loop.closing: 0 turn them
 // off.
 #include <gtest/gtest.h>
@@ -20,7 +20,7 @@ io::Settings rgbdSettings(const test::SettingsEdit& edit = {}) {
 
 TEST(SystemDefaultVocabulary, DefaultSettingsHaveRelocalizationAndLoopClosing) {
   const test::ScopedEnv env(loop::kVocabularyEnvironment, std::nullopt);
-  const System system(rgbdSettings(), SystemOptions{});
+  const Pipeline system(rgbdSettings(), PipelineOptions{});
   ASSERT_NE(system.placeRecognition(), nullptr);
   EXPECT_NE(system.loopCloser(), nullptr);
   EXPECT_EQ(std::filesystem::path(system.vocabularyDescription()).filename(),
@@ -28,23 +28,23 @@ TEST(SystemDefaultVocabulary, DefaultSettingsHaveRelocalizationAndLoopClosing) {
 }
 
 TEST(SystemDefaultVocabulary, NoneTurnsTheVocabularyOff) {
-  SystemOptions options;
+  PipelineOptions options;
   options.vocabulary = "none";
-  const System by_option(rgbdSettings(), options);
+  const Pipeline by_option(rgbdSettings(), options);
   EXPECT_EQ(by_option.placeRecognition(), nullptr);
   EXPECT_EQ(by_option.loopCloser(), nullptr);
   EXPECT_EQ(by_option.vocabularyDescription(), "none");
 
-  const System by_settings(
+  const Pipeline by_settings(
       rgbdSettings([](std::string yaml) { return yaml + "\nLoop.vocabulary: none\n"; }),
-      SystemOptions{});
+      PipelineOptions{});
   EXPECT_EQ(by_settings.placeRecognition(), nullptr);
 }
 
 TEST(SystemDefaultVocabulary, LoopClosingOffKeepsRelocalization) {
-  SystemOptions options;
+  PipelineOptions options;
   options.loop_closing = false;
-  const System system(rgbdSettings(), options);
+  const Pipeline system(rgbdSettings(), options);
   EXPECT_NE(system.placeRecognition(), nullptr);
   EXPECT_EQ(system.loopCloser(), nullptr);
 }

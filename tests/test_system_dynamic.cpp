@@ -1,4 +1,4 @@
-// Dynamic-object removal in System (issue 6): the box-file detector fed the generator's
+// Dynamic-object removal in Pipeline (issue 6): the box-file detector fed the generator's
 // ground-truth boxes on the synthetic walking sequences; detector errors at construction.
 #include <gtest/gtest.h>
 
@@ -24,7 +24,7 @@ TEST(SystemDynamic, BoxRemovalCutsTheErrorOnWalkingXyz) {
   const synth::SequenceRenderer sequence(synth::findPreset("walking-xyz-rgbd"), 100, 1);
   test::TempDir dir("system_dynamic");
   test::GroundTruthBoxes truth;
-  SystemOptions without_options;
+  PipelineOptions without_options;
   without_options.detector = "none";
   without_options.motion_evidence = false;  // box removal alone (issue 6)
   const auto without =
@@ -33,7 +33,7 @@ TEST(SystemDynamic, BoxRemovalCutsTheErrorOnWalkingXyz) {
   const auto boxes = dir.path() / "boxes.txt";
   truth.write(boxes);
 
-  SystemOptions with_options;
+  PipelineOptions with_options;
   with_options.detector = "boxes:" + boxes.string();
   with_options.motion_evidence = false;  // box removal alone (issue 6)
   std::size_t frames_with_boxes = 0;
@@ -68,7 +68,7 @@ TEST(SystemDynamic, YoloDetectorDropsFeaturesInsideItsBoxes) {
   synth::SynthOptions people_only;  // YOLO knows no "box": the settings then say "person"
   people_only.moving_boxes = 0;
   const synth::SequenceRenderer sequence(synth::findPreset("walking-xyz-rgbd"), 40, 1, people_only);
-  SystemOptions options;
+  PipelineOptions options;
   options.detector = "yolo:" + model.string();
   options.motion_evidence = false;  // box removal alone (issue 6)
   std::size_t frames_with_drops = 0;
@@ -89,10 +89,10 @@ TEST(SystemDynamic, BadDetectorSpecsFailAtConstruction) {
   const synth::SequenceRenderer sequence(synth::findPreset("walking-xyz-rgbd"), 2, 1);
   const auto settings = test::presetSettings(sequence);
   const auto message = [&](const std::string& spec) {
-    SystemOptions options;
+    PipelineOptions options;
     options.detector = spec;
     try {
-      System system(settings, options);
+      Pipeline system(settings, options);
     } catch (const Error& e) {
       return std::string(e.what());
     }
@@ -104,9 +104,9 @@ TEST(SystemDynamic, BadDetectorSpecsFailAtConstruction) {
       << message("boxes:/no/such/boxes.txt");
   EXPECT_NE(message("yolo:/no/such/model.onnx").find("/no/such/model.onnx"), std::string::npos)
       << message("yolo:/no/such/model.onnx");
-  SystemOptions none;
+  PipelineOptions none;
   none.detector = "none";
-  EXPECT_EQ(System(settings, none).detectorDescription(), "none");
+  EXPECT_EQ(Pipeline(settings, none).detectorDescription(), "none");
 }
 
 }  // namespace

@@ -1,5 +1,5 @@
 #pragma once
-// Runs System with a detector on a synthetic RGB-D sequence rendered in memory, reporting
+// Runs Pipeline with a detector on a synthetic RGB-D sequence rendered in memory, reporting
 // per frame what it dropped, and evaluates the trajectory: shared by the dynamic-removal tests.
 #include <filesystem>
 #include <fstream>
@@ -38,17 +38,17 @@ class GroundTruthBoxes {
   std::string text_;
 };
 
-// Called after every tracked frame with what the generator rendered and what System made of it.
+// Called after every tracked frame with what the generator rendered and what Pipeline made of it.
 using FrameObserver = std::function<void(const synth::Frame&, const FrameResult&)>;
 
 // Enhancement off and local mapping in the caller's thread (repeatable) unless `options` says
 // otherwise. `extra_settings`: YAML lines appended to the generator's settings.yaml.
-inline SyntheticRun runSynthetic(const synth::SequenceRenderer& sequence, SystemOptions options,
+inline SyntheticRun runSynthetic(const synth::SequenceRenderer& sequence, PipelineOptions options,
                                  const FrameObserver& observe = {},
                                  const std::string& extra_settings = {}) {
   if (!options.enhance_preset) options.enhance_preset = "off";
   if (!options.sequential) options.sequential = true;
-  System system(presetSettings(sequence, [&](std::string yaml) { return yaml + extra_settings; }),
+  Pipeline system(presetSettings(sequence, [&](std::string yaml) { return yaml + extra_settings; }),
                 options);
   Trajectory ground_truth;
   SyntheticRun run;

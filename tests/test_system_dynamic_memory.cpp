@@ -19,7 +19,7 @@ TEST(SystemDynamicMemory, RecentBoxesCoverForMissedDetections) {
   }
   const auto boxes = dir.path() / "bursts.txt";
   bursts.write(boxes);
-  SystemOptions options;
+  PipelineOptions options;
   options.detector = "boxes:" + boxes.string();
   options.motion_evidence = false;  // box removal alone (issue 6)
 

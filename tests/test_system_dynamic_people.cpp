@@ -18,11 +18,11 @@ TEST(SystemDynamicPeople, YoloRemovalOnPhotoWalkersMeetsTheIssueTarget) {
   photo_walkers.people = test::labelledPeople();
   const synth::SequenceRenderer sequence(synth::findPreset("walking-xyz-rgbd"), 100, 1,
                                          photo_walkers);
-  SystemOptions without_options;
+  PipelineOptions without_options;
   without_options.detector = "none";
   without_options.motion_evidence = false;  // box removal alone (issue 6)
   const auto without = test::runSynthetic(sequence, without_options, {});
-  SystemOptions yolo_options;
+  PipelineOptions yolo_options;
   yolo_options.detector = "yolo:" + model.string();
   yolo_options.motion_evidence = false;  // box removal alone (issue 6)
   std::size_t frames_with_drops = 0;
@@ -53,7 +53,7 @@ TEST(SystemDynamicPeople, GroundTruthBoxRemovalKeepsEveryFrameNearTheTruth) {
   const test::TempDir dir("people_gt_boxes");
   const auto box_file = dir.path() / "detections.txt";
   boxes.write(box_file);
-  SystemOptions options;
+  PipelineOptions options;
   options.detector = "boxes:" + box_file.string();
   options.motion_evidence = false;  // box removal alone (issue 6)
   const auto run = test::runSynthetic(sequence, options);

@@ -16,7 +16,7 @@ TEST(SystemDynamicRpy, BoxRemovalCutsTheErrorOnWalkingRpy) {
   test::TempDir dir("system_dynamic_rpy");
   test::GroundTruthBoxes truth;
   std::size_t frames_with_walkers = 0;
-  SystemOptions without_options;
+  PipelineOptions without_options;
   without_options.detector = "none";
   without_options.motion_evidence = false;  // box removal alone (issue 6)
   const auto without = test::runSynthetic(
@@ -30,7 +30,7 @@ TEST(SystemDynamicRpy, BoxRemovalCutsTheErrorOnWalkingRpy) {
   // The walkers stay in the turning view: at least 5% of the image on almost every frame.
   EXPECT_GE(frames_with_walkers, 95U);
 
-  SystemOptions with_options;
+  PipelineOptions with_options;
   with_options.detector = "boxes:" + boxes.string();
   with_options.motion_evidence = false;  // box removal alone (issue 6)
   const auto with = test::runSynthetic(sequence, with_options);

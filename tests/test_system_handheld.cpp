@@ -16,10 +16,10 @@ test::RunResult runWithOptions(const synth::Preset& preset, int frames, std::uin
                                const synth::SynthOptions& options) {
   const synth::SequenceRenderer sequence(preset, frames, seed, options);
   const auto settings = test::presetSettings(sequence);
-  SystemOptions system_options;
+  PipelineOptions system_options;
   system_options.enhance_preset = "off";
   system_options.sequential = true;
-  System system(settings, system_options);
+  Pipeline system(settings, system_options);
   Trajectory ground_truth;
   test::RunResult run;
   for (int i = 0; i < frames; ++i) {

@@ -1,4 +1,4 @@
-// Loop closing in the running System on `loop-stereo` (system_loop_run.h): one lap of the
+// Loop closing in the running Pipeline on `loop-stereo` (system_loop_run.h): one lap of the
 // room, then 150 degrees of a second lap from other viewpoints. The same input is run with
 // loop closing off and on; the loop must be detected and closed and the ATE of the whole
 // trajectory must drop.

@@ -20,10 +20,10 @@ struct LowLightRun {
 // The first `frames` frames of the preset's 300-frame sequence (the CLI's default length).
 LowLightRun runDarkened(const std::string& enhance_preset, int frames) {
   const synth::SequenceRenderer sequence(synth::findPreset("dark-rgbd"), 300, 1);
-  SystemOptions options;
+  PipelineOptions options;
   options.enhance_preset = enhance_preset;
   options.sequential = true;
-  System system(test::presetSettings(sequence), options);
+  Pipeline system(test::presetSettings(sequence), options);
   Trajectory ground_truth;
   LowLightRun run;
   for (int i = 0; i < frames; ++i) {

@@ -19,8 +19,8 @@ struct MappedRoom {
   SE3 T_gt_world;  // the map's world (first camera) in the generator's world
 };
 
-SystemOptions quietOptions() {
-  SystemOptions options;
+PipelineOptions quietOptions() {
+  PipelineOptions options;
   options.enhance_preset = "off";
   options.sequential = true;
   return options;
@@ -28,7 +28,7 @@ SystemOptions quietOptions() {
 
 MappedRoom mapRoom(const std::filesystem::path& file, int frames) {
   const synth::SequenceRenderer sequence(synth::findPreset("halfsphere-rgbd"), frames, 1);
-  System system(presetSettings(sequence), quietOptions());
+  Pipeline system(presetSettings(sequence), quietOptions());
   for (int i = 0; i < frames; ++i) system.track(sensorFrame(sequence.render(i)));
   system.saveMap(file);
   return {file, sequence.render(0).cam0.T_w_c};
@@ -48,10 +48,10 @@ io::Settings xyzSettings(const SettingsEdit& edit = {}) {
   return presetSettings(sequence, edit);
 }
 
-// The error loadMap throws (empty if none); the System must stay usable and empty.
+// The error loadMap throws (empty if none); the Pipeline must stay usable and empty.
 std::string loadError(const std::filesystem::path& file, const io::Settings& settings,
-                      SystemOptions options = quietOptions()) {
-  System system(settings, options);
+                      PipelineOptions options = quietOptions()) {
+  Pipeline system(settings, options);
   try {
     system.loadMap(file);
   } catch (const Error& e) {
@@ -65,7 +65,7 @@ std::string loadError(const std::filesystem::path& file, const io::Settings& set
 TEST(SystemMapFile, SaveLoadSaveIsByteIdentical) {
   TempDir dir("map_file");
   const auto room = mapRoom(dir.path() / "room.map", 60);
-  System system(xyzSettings(), quietOptions());
+  Pipeline system(xyzSettings(), quietOptions());
   system.loadMap(room.file);
   EXPECT_GT(system.keyFrameCount(), 2U);
   EXPECT_GT(system.mapPointCount(), 500U);
@@ -80,7 +80,7 @@ TEST(SystemMapFile, LocalizesOnAnotherTrajectoryWithoutAddingKeyframes) {
   const auto room = mapRoom(dir.path() / "room.map", 300);
   const int frames = 300;
   const synth::SequenceRenderer sequence(synth::findPreset("xyz-rgbd"), frames, 1);
-  System system(presetSettings(sequence), quietOptions());
+  Pipeline system(presetSettings(sequence), quietOptions());
   system.loadMap(room.file);
   system.setLocalizationMode(true);
   const std::size_t keyframes = system.keyFrameCount();
@@ -132,7 +132,7 @@ TEST(SystemMapFile, BadFilesAreClearErrorsAndLoadNothing) {
   const std::string camera_error = loadError(room.file, other_camera);
   EXPECT_NE(camera_error.find("camera fx"), std::string::npos) << camera_error;
 
-  SystemOptions no_vocabulary = quietOptions();
+  PipelineOptions no_vocabulary = quietOptions();
   no_vocabulary.vocabulary = "none";
   const std::string vocabulary_error = loadError(room.file, settings, no_vocabulary);
   EXPECT_NE(vocabulary_error.find("vocabulary"), std::string::npos) << vocabulary_error;
@@ -143,7 +143,7 @@ TEST(SystemMapFile, LoadAfterTheFirstFrameIsAnError) {
   TempDir dir("map_file");
   const auto room = mapRoom(dir.path() / "room.map", 30);
   const synth::SequenceRenderer sequence(synth::findPreset("xyz-rgbd"), 1, 1);
-  System system(presetSettings(sequence), quietOptions());
+  Pipeline system(presetSettings(sequence), quietOptions());
   system.track(sensorFrame(sequence.render(0)));
   EXPECT_THROW(system.loadMap(room.file), Error);
 }

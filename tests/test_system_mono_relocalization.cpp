@@ -45,10 +45,10 @@ struct BlackoutRun {
 
 BlackoutRun runWithBlackout() {
   const auto settings = test::presetSettings(sequence(), {}, kMonocular);
-  SystemOptions options;
+  PipelineOptions options;
   options.enhance_preset = "off";
   options.sequential = true;
-  System system(settings, options);
+  Pipeline system(settings, options);
   BlackoutRun run;
   for (int i = 0; i < kFrames; ++i) {
     const auto frame = sequence().render(i < kFirstDark + kDarkFrames ? i : i + kSkipped);

@@ -10,8 +10,8 @@ namespace {
 
 using namespace lumaslam;
 
-SystemOptions withoutDetector(bool motion_evidence) {
-  SystemOptions options;
+PipelineOptions withoutDetector(bool motion_evidence) {
+  PipelineOptions options;
   options.detector = "none";
   options.motion_evidence = motion_evidence;
   return options;
@@ -56,10 +56,10 @@ TEST(SystemMotionEvidence, KeepsAStillCameraStillWhilePeopleWalkBy) {
 TEST(SystemMotionEvidence, CostsNothingOnAStaticScene) {
   const synth::SequenceRenderer sequence(synth::findPreset("xyz-rgbd"), 100, 1);
   const auto before = test::runSynthetic(sequence, withoutDetector(false));
-  SystemOptions options = withoutDetector(true);
+  PipelineOptions options = withoutDetector(true);
   options.enhance_preset = "off";
   options.sequential = true;
-  System system(test::presetSettings(sequence), options);
+  Pipeline system(test::presetSettings(sequence), options);
   Trajectory ground_truth;
   for (int i = 0; i < sequence.frameCount(); ++i) {
     const auto frame = sequence.render(i);

@@ -12,7 +12,7 @@
 #include "lumaslam/io/dataset_reader.h"
 #include "lumaslam/io/settings.h"
 #include "lumaslam/io/tum_rgbd_reader.h"
-#include "lumaslam/system.h"
+#include "lumaslam/pipeline.h"
 #include "test_paths.h"
 
 namespace lumaslam {
@@ -62,9 +62,9 @@ TEST_P(RealRgbdFirstFrame, IsTrackedAfterAFastTurn) {
   auto frames = readFrames({init, next});
   ASSERT_EQ(frames.size(), 2U);
   const auto settings = io::loadSettings(redKitchen() / "settings.yaml");
-  SystemOptions options;
+  PipelineOptions options;
   options.sequential = true;
-  System system(settings, options);
+  Pipeline system(settings, options);
   const auto first = system.track(toSensorFrame(frames.at(init)));
   ASSERT_EQ(first.outcome.state, track::TrackingState::Ok);
   const auto second = system.track(toSensorFrame(frames.at(next)));
@@ -91,10 +91,10 @@ TEST(RealRgbdRecovery, AfterABlackoutWithoutAVocabulary) {
   auto frames = readFrames(indices);
   ASSERT_EQ(frames.size(), indices.size());
   const auto settings = io::loadSettings(redKitchen() / "settings.yaml");
-  SystemOptions options;
+  PipelineOptions options;
   options.sequential = true;
   options.vocabulary = "none";  // what recovers here must be the tracker's own fallback
-  System system(settings, options);
+  Pipeline system(settings, options);
   ASSERT_EQ(system.placeRecognition(), nullptr);
   std::optional<std::size_t> recovered;
   for (auto& [index, frame] : frames) {

@@ -58,7 +58,7 @@ struct DisturbedRun {
   Sensor sensor = Sensor::Rgbd;
   std::vector<track::TrackingOutcome> outcomes;  // per frame
   std::vector<double> tracking_ms;               // per frame (printed, never asserted)
-  Trajectory trajectory;                         // System::frameTrajectory()
+  Trajectory trajectory;                         // Pipeline::frameTrajectory()
   Trajectory keyframes;
   std::size_t keyframes_before = 0;  // when the light went
 };
@@ -66,11 +66,11 @@ struct DisturbedRun {
 // Runs the sequence with images [kFirstDark, kFirstDark + dark_frames) disturbed.
 DisturbedRun runDisturbed(int dark_frames, const Disturbance& disturb, bool with_vocabulary,
                           bool sequential = true, Sensor sensor = Sensor::Rgbd) {
-  SystemOptions options;
+  PipelineOptions options;
   options.enhance_preset = enhancementFor(sensor);
   options.sequential = sequential;
   if (!with_vocabulary) options.vocabulary = "none";
-  System system(test::presetSettings(sequence(sensor)), options);
+  Pipeline system(test::presetSettings(sequence(sensor)), options);
   DisturbedRun run;
   run.sensor = sensor;
   for (int i = 0; i < kFrames; ++i) {
@@ -114,7 +114,7 @@ bool recoveredByRelocalizer(const DisturbedRun& run, int light_back) {
 
 // Position errors (metres) of the tracked frames from `from` on, in the world of the map
 // started before the disturbance: no alignment, the ground truth is expressed relative to
-// the first keyframe's frame as the System's world is.
+// the first keyframe's frame as the Pipeline's world is.
 std::vector<double> positionErrorsFrom(const DisturbedRun& run, int from, int to = kFrames) {
   const auto& frames = sequence(run.sensor);
   const double t0 = run.keyframes.front().timestamp;
@@ -236,11 +236,11 @@ TEST(SystemRelocalization, WithoutVocabularyTheReferenceKeyFrameRecoversTheBlack
 }
 
 TEST(SystemRelocalization, MissingVocabularyIsAnErrorNamingTheFile) {
-  SystemOptions options;
+  PipelineOptions options;
   options.enhance_preset = "off";
   options.vocabulary = "/nonexistent/vocab.bin";
   try {
-    System system(test::presetSettings(sequence(Sensor::Rgbd)), options);
+    Pipeline system(test::presetSettings(sequence(Sensor::Rgbd)), options);
     FAIL() << "no error for a missing vocabulary";
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("/nonexistent/vocab.bin"), std::string::npos) << e.what();

@@ -1,5 +1,5 @@
 #pragma once
-// Runs the System over a synthetic preset (with the Settings the generator writes, optionally
+// Runs the Pipeline over a synthetic preset (with the Settings the generator writes, optionally
 // edited, optionally as another sensor: e.g. the rgb stream of an RGB-D preset as monocular)
 // and evaluates the trajectory against the ground truth: shared by the test_system_* tests.
 #include <functional>
@@ -14,7 +14,7 @@
 #include "lumaslam/io/settings.h"
 #include "lumaslam/synth/dataset_writer.h"
 #include "lumaslam/synth/sequence.h"
-#include "lumaslam/system.h"
+#include "lumaslam/pipeline.h"
 #include "test_trajectory_length.h"
 
 namespace lumaslam::test {
@@ -69,10 +69,10 @@ inline RunResult runOnPreset(const std::string& preset, int frames, std::uint64_
                              const RunConfig& config = {}) {
   const synth::SequenceRenderer sequence(synth::findPreset(preset), frames, seed);
   const auto settings = presetSettings(sequence, config.edit, config.sensor);
-  SystemOptions options;
+  PipelineOptions options;
   options.enhance_preset = "off";
   options.sequential = config.sequential;
-  System system(settings, options);
+  Pipeline system(settings, options);
   Trajectory ground_truth;
   RunResult run;
   for (int i = 0; i < frames; ++i) {

@@ -1,4 +1,4 @@
-// Issue 20 item 6, settings typos: a key no part of the System reads (Enhancement.presett,
+// Issue 20 item 6, settings typos: a key no part of the Pipeline reads (Enhancement.presett,
 // Camera.fxx, ORBextractor.nfeatures) is reported with the closest known key, a warning by
 // default and an Error with strict_settings; every shipped config and the generator's settings
 // have no such key (ORB-SLAM3 keys lumaslam ignores on purpose, e.g. Camera.type, are not
@@ -21,9 +21,9 @@ io::Settings synthSettingsWith(const std::string& extra) {
 }
 
 std::vector<core::UnknownKey> unknownAfterConstruction(const io::Settings& settings) {
-  SystemOptions options;
+  PipelineOptions options;
   options.sequential = true;
-  const System system(settings, options);
+  const Pipeline system(settings, options);
   return core::unknownKeys(*settings.file);
 }
 
@@ -46,11 +46,11 @@ TEST(SettingsKeys, TyposAreReportedWithTheClosestKnownKey) {
 
 TEST(SettingsKeys, StrictSettingsMakeATypoAnErrorNamingTheKeyAndTheFix) {
   const auto settings = synthSettingsWith("Enhancement.presett: \"clahe\"\n");
-  SystemOptions options;
+  PipelineOptions options;
   options.sequential = true;
   options.strict_settings = true;
   try {
-    const System system(settings, options);
+    const Pipeline system(settings, options);
     FAIL() << "no error for Enhancement.presett";
   } catch (const Error& e) {
     const std::string message = e.what();

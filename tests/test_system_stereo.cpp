@@ -59,10 +59,10 @@ TEST(SystemStereo, ReportsPosesOfTheCalibratedCameraOfARotatedRig) {
                       "  data: [1, 0, 0, {}, 0, 1, 0, {}, 0, 0, 1, {}, 0, 0, 0, 1]\n",
                       cam.fx, cam.fy, cam.cx, cam.cy, t.x(), t.y(), t.z());
   };
-  SystemOptions options;
+  PipelineOptions options;
   options.enhance_preset = "off";
   options.sequential = true;
-  System system(test::presetSettings(sequence, rotated_rig), options);
+  Pipeline system(test::presetSettings(sequence, rotated_rig), options);
 
   std::vector<SE3> truth;  // T_w_c1 of the turned camera 1
   SE3 T_rendered_c1 = SE3::Identity();
@@ -97,17 +97,17 @@ TEST(SystemStereo, ReportsPosesOfTheCalibratedCameraOfARotatedRig) {
 }
 
 // EuRoC V1_01 starts with the MAV at rest on the floor: an unrectified pair with real
-// calibration, which the System rectifies before tracking.
+// calibration, which the Pipeline rectifies before tracking.
 TEST(SystemStereo, RealEurocAtRestTracksEveryFrameWithoutDrift) {
   const auto root = test::dataDir() / "euroc" / "V1_01_easy_micro";
   ASSERT_TRUE(std::filesystem::exists(root))
       << root << " is missing: the shared data is a required test input (LUMASLAM_SHARED_DIR)";
   const auto settings = io::loadSettings(test::sourceDir() / "configs" / "euroc_stereo.yaml");
   ASSERT_TRUE(settings.stereo && settings.stereo->right);
-  SystemOptions options;
+  PipelineOptions options;
   options.enhance_preset = "off";
   options.sequential = true;
-  System system(settings, options);
+  Pipeline system(settings, options);
   // Tracking runs in the rectified camera: no distortion, bf from the rectified baseline.
   EXPECT_FALSE(system.frameCamera().pinhole.hasDistortion());
   EXPECT_NEAR(system.frameCamera().bf / system.frameCamera().pinhole.fx(), 0.110, 0.002);
@@ -137,10 +137,10 @@ TEST(SystemStereo, RealEurocAtRestTracksEveryFrameWithoutDrift) {
 
 TEST(SystemStereo, MissingOrMismatchedRightImageIsAClearError) {
   const synth::SequenceRenderer sequence(synth::findPreset("xyz-stereo"), 1, 1);
-  SystemOptions options;
+  PipelineOptions options;
   options.enhance_preset = "off";
   options.sequential = true;
-  System system(test::presetSettings(sequence), options);
+  Pipeline system(test::presetSettings(sequence), options);
   auto input = test::sensorFrame(sequence.render(0));
 
   auto without_right = input;
@@ -170,14 +170,14 @@ TEST(SystemStereo, MissingOrMismatchedRightImageIsAClearError) {
 
 TEST(SystemStereo, DistortedPairWithoutSecondCalibrationIsRejected) {
   // A PinHole pair with only camera 1 and Stereo.b is taken as rectified (ORB-SLAM2 files):
-  // with distortion, its rows cannot agree, so the System refuses it.
+  // with distortion, its rows cannot agree, so the Pipeline refuses it.
   const synth::SequenceRenderer sequence(synth::findPreset("xyz-stereo"), 1, 1);
   const auto distorted = [](std::string yaml) {
     return std::regex_replace(asPinHoleWithoutPose(yaml), std::regex("Camera.k1: 0.0"),
                               "Camera.k1: -0.28");
   };
   try {
-    System system(test::presetSettings(sequence, distorted));
+    Pipeline system(test::presetSettings(sequence, distorted));
     FAIL() << "no error for a distorted pair without Camera2.*";
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("distortion"), std::string::npos) << e.what();

@@ -15,10 +15,10 @@ namespace {
 
 std::map<track::TrackingStep, int> stepsOf(const std::string& preset, int frames) {
   const synth::SequenceRenderer sequence(synth::findPreset(preset), frames, 1);
-  SystemOptions options;
+  PipelineOptions options;
   options.enhance_preset = "off";
   options.sequential = true;
-  System system(test::presetSettings(sequence), options);
+  Pipeline system(test::presetSettings(sequence), options);
   std::map<track::TrackingStep, int> steps;
   for (int i = 0; i < frames; ++i) {
     ++steps[system.track(test::sensorFrame(sequence.render(i))).outcome.step];

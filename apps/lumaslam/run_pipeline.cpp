@@ -18,7 +18,7 @@
 #include "lumaslam/io/settings.h"
 #include "lumaslam/io/trajectory_io.h"
 #include "lumaslam/loop/loop_closer.h"
-#include "lumaslam/system.h"
+#include "lumaslam/pipeline.h"
 #include "stop_signal.h"
 
 namespace lumaslam::cli {
@@ -37,7 +37,7 @@ double median(std::vector<double> values) {
 
 // Every map of the atlas in summary.json; the main one is trajectory.txt, the others (never
 // merged into it) trajectory_map<ID>.txt, each in its own world.
-nlohmann::json writeMapTrajectories(const System& system, const std::filesystem::path& out) {
+nlohmann::json writeMapTrajectories(const Pipeline& system, const std::filesystem::path& out) {
   nlohmann::json maps = nlohmann::json::array();
   const map::MapId main = system.mainMap();
   for (const auto& [id, frames] : system.mapTrajectories()) {
@@ -101,7 +101,7 @@ bool recordBadFrame(FrameLoop& loop, std::string what, const RunOptions& options
 
 // Reads and tracks every frame, one timing.csv row each, until the dataset ends, a signal
 // asks to stop, or a bad frame stops it.
-FrameLoop trackFrames(io::DatasetReader& reader, System& system, io::OutputFile& timing,
+FrameLoop trackFrames(io::DatasetReader& reader, Pipeline& system, io::OutputFile& timing,
                       const RunOptions& options, const StopOnSignal& stop) {
   constexpr std::size_t kMaxUnreadableInARow = 100;  // a reader that cannot go on
   const bool progress = isatty(STDERR_FILENO) != 0;
@@ -158,7 +158,7 @@ FrameLoop trackFrames(io::DatasetReader& reader, System& system, io::OutputFile&
 }
 
 nlohmann::json summaryOf(const RunOptions& options, const std::filesystem::path& settings_path,
-                         const System& system, const FrameLoop& loop, nlohmann::json maps) {
+                         const Pipeline& system, const FrameLoop& loop, nlohmann::json maps) {
   double mean = 0.0;
   for (double v : loop.totals) mean += v / static_cast<double>(loop.totals.size());
   std::size_t loops = 0;
@@ -197,7 +197,7 @@ nlohmann::json summaryOf(const RunOptions& options, const std::filesystem::path&
 }
 
 // The error message, empty when saved or not asked to.
-std::string saveMapIfAsked(System& system, const RunOptions& options) {
+std::string saveMapIfAsked(Pipeline& system, const RunOptions& options) {
   if (!options.save_map) return {};
   try {
     system.saveMap(*options.save_map);
@@ -207,7 +207,7 @@ std::string saveMapIfAsked(System& system, const RunOptions& options) {
   return {};
 }
 
-nlohmann::json mapFileSummary(const RunOptions& options, const System& system,
+nlohmann::json mapFileSummary(const RunOptions& options, const Pipeline& system,
                               std::size_t loaded_keyframes, const std::string& save_error) {
   const auto path_or_null = [](const std::optional<std::filesystem::path>& path) {
     return path ? nlohmann::json(path->string()) : nlohmann::json(nullptr);
@@ -277,7 +277,7 @@ int runPipeline(const RunOptions& options) {
   io::requireWritableFolder(options.out);
   removeEarlierOutputs(options.out);
 
-  SystemOptions system_options;
+  PipelineOptions system_options;
   system_options.enhance_preset = options.enhance_preset;
   system_options.detector = options.detector;
   if (options.sequential) system_options.sequential = true;
@@ -285,7 +285,7 @@ int runPipeline(const RunOptions& options) {
   if (options.no_loop_closing) system_options.loop_closing = false;
   if (options.no_motion_evidence) system_options.motion_evidence = false;
   system_options.strict_settings = options.strict_settings;
-  System system(settings, system_options);
+  Pipeline system(settings, system_options);
   if (options.load_map) system.loadMap(*options.load_map);
   if (options.localization) system.setLocalizationMode(true);
   const std::size_t loaded_keyframes = system.keyFrameCount();

@@ -1,7 +1,7 @@
 #pragma once
 // `lumaslam vocab eval`: place-recognition recall and precision of a vocabulary on a dataset
 // with ground-truth poses. Every `keyframe_every`-th frame goes into a keyframe database
-// (BoW + direct index, as the System adds keyframes); every other frame queries it with the
+// (BoW + direct index, as the Pipeline adds keyframes); every other frame queries it with the
 // relocalization query (ORB-SLAM's DetectRelocalizationCandidates, no covisibility grouping).
 // A keyframe is a correct answer when its ground-truth pose is within `max_distance` metres
 // and `max_angle_deg` degrees of the query's; keyframes within `exclude_window` frames of the

@@ -1,6 +1,6 @@
 #pragma once
 // The tracker's FrameRelocalizer backed by loop::Relocalizer (BoW candidates from the
-// keyframe database, SearchByBoW, EPnP + RANSAC, pose-only refinement): how the System
+// keyframe database, SearchByBoW, EPnP + RANSAC, pose-only refinement): how the Pipeline
 // plugs place recognition into tracking without track/ depending on loop/.
 #include <memory>
 

@@ -1,524 +1,231 @@
 #include "lumaslam/system.h"
 
 #include <chrono>
-#include <functional>
-#include <future>
+#include <cmath>
+#include <mutex>
 
-#include <spdlog/spdlog.h>
-
-#include "lumaslam/bow_relocalizer.h"
-#include "lumaslam/camera/stereo_rectifier.h"
+#include "lumaslam/camera_pose_conversion.h"
 #include "lumaslam/core/error.h"
-#include "lumaslam/core/gray_image.h"
-#include "lumaslam/detect/detection_worker.h"
-#include "lumaslam/detect/detector_factory.h"
-#include "lumaslam/detect/detector_spec.h"
-#include "lumaslam/detect/dynamic_mask.h"
-#include "lumaslam/enhance/enhancer.h"
-#include "lumaslam/io/dataset_reader.h"
-#include "lumaslam/loop/loop_closer.h"
-#include "lumaslam/loop/place_recognition.h"
-#include "lumaslam/loop/vocabulary_choice.h"
-#include "lumaslam/loop/vocabulary_io.h"
-#include "lumaslam/mapping/local_mapper.h"
-#include "lumaslam/track/feature_subset.h"
-#include "lumaslam/track/frame_builder.h"
+#include "lumaslam/io/settings.h"
+#include "lumaslam/pipeline.h"
 
 namespace lumaslam {
+
 namespace {
 
-using Clock = std::chrono::steady_clock;
-double msSince(Clock::time_point start) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+PipelineOptions toPipelineOptions(const SystemConfig& config) {
+  PipelineOptions options;
+  options.enhance_preset = config.enhancement;
+  options.sequential = config.sequential;
+  options.detector = config.detector;
+  options.vocabulary = config.vocabulary;
+  options.loop_closing = config.loop_closing;
+  options.motion_evidence = config.motion_evidence;
+  options.strict_settings = config.strict_settings;
+  return options;
 }
 
-track::FrameCamera frameCameraFrom(const io::Settings& settings,
-                                   const camera::StereoRectifier* rectifier) {
-  if (rectifier) {  // unrectified pair: track in the common camera of the rectified images
-    return {rectifier->rectifiedCamera(), rectifier->bf(),
-            settings.depth.thDepth * rectifier->baseline()};
+Sensor toSensor(io::SensorType type) {
+  switch (type) {
+    case io::SensorType::Monocular:
+      return Sensor::Monocular;
+    case io::SensorType::Stereo:
+      return Sensor::Stereo;
+    case io::SensorType::Rgbd:
+      return Sensor::Rgbd;
   }
-  return {camera::PinholeCamera::fromSettings(settings.camera), settings.bf(),
-          settings.closeDepth()};
+  return Sensor::Monocular;
 }
 
-feature::OrbSettings orbSettingsFrom(const io::Settings& settings) {
-  feature::OrbSettings orb;
-  orb.nFeatures = settings.orb.nFeatures;
-  orb.scaleFactor = settings.orb.scaleFactor;
-  orb.nLevels = settings.orb.nLevels;
-  orb.iniThFAST = settings.orb.iniThFAST;
-  orb.minThFAST = settings.orb.minThFAST;
-  return orb;
+TrackState toTrackState(track::TrackingState state) {
+  switch (state) {
+    case track::TrackingState::NotInitialized:
+      return TrackState::NotInitialized;
+    case track::TrackingState::Ok:
+      return TrackState::Tracking;
+    case track::TrackingState::Lost:
+      return TrackState::Lost;
+  }
+  return TrackState::Lost;
 }
 
-// Run once every part of the System has read its keys.
-void checkUnknownKeys(const core::SettingsFile& file, bool strict) {
-  for (const auto& [key, suggestion] : core::unknownKeys(file)) {
-    const std::string hint =
-        suggestion.empty() ? "" : fmt::format("; did you mean '{}'?", suggestion);
-    if (strict) fail("{}: unknown key '{}'{} (--strict-settings)", file.origin(), key, hint);
-    spdlog::warn("{}: unknown key '{}' is ignored{}", file.origin(), key, hint);
-  }
-}
-
-}  // namespace
-
-System::System(const io::Settings& settings, const SystemOptions& options)
-    : settings_(settings),
-      sequential_(options.sequential.value_or(settings.system.sequential)),
-      map_(std::make_shared<map::Map>()) {
-  const bool stereo = settings_.sensor == io::SensorType::Stereo;
-  if (stereo && settings_.stereo && !settings_.stereo->right && settings_.camera.hasDistortion()) {
-    fail(
-        "{}: a stereo pair without Camera2.* is taken as rectified, but camera 1 has distortion; "
-        "give Camera2.* and Stereo.T_c1_c2 so that the System rectifies it, or rectified images "
-        "with zero distortion",
-        settings_.path.string());
-  }
-  if (stereo && settings_.stereo && settings_.stereo->right) {
-    rectifier_ =
-        std::make_unique<camera::StereoRectifier>(camera::StereoRectifier::fromSettings(settings_));
-    const auto& k = rectifier_->rectifiedCamera();
-    spdlog::info(
-        "{}: stereo pair rectified: fx={:.3f} fy={:.3f} cx={:.3f} cy={:.3f}, baseline {:.4f} m, "
-        "bf {:.3f}",
-        settings_.file ? settings_.file->origin() : settings_.path.string(), k.fx(), k.fy(), k.cx(),
-        k.cy(), rectifier_->baseline(), rectifier_->bf());
-  }
-  auto enhancer_params = settings_.file ? enhance::EnhancerParams::fromSettings(*settings_.file)
-                                        : enhance::EnhancerParams{};
-  if (options.enhance_preset) {
-    enhancer_params = enhance::EnhancerParams::forPreset(*options.enhance_preset);
-  }
-  if (enhancer_params.preset != "off") {
-    enhancer_ = std::make_unique<enhance::Enhancer>(enhancer_params);
-    // Enhancement.stereo "independent": the right image gets its own enhancer (and online
-    // statistics); otherwise it is enhanced with the left image's plan (rightGray).
-    if (stereo && enhancer_params.stereo == enhance::StereoMapping::kIndependent) {
-      right_enhancer_ = std::make_unique<enhance::Enhancer>(enhancer_params);
-    }
-  }
-  if (auto params = detect::detectorParamsFor(settings_.file.get(), options.detector)) {
-    // makeDetector fails here, at startup, for a missing or invalid model / box file.
-    detector_ = std::make_unique<detect::DetectionWorker>(detect::makeDetector(*params),
-                                                          detect::WorkerParams::from(*params));
-    detector_description_ = detect::describeChoice(params);
-    detector_params_ = std::make_unique<detect::DetectorParams>(std::move(*params));
-  }
-
-  const loop::VocabularyChoice vocabulary =
-      loop::chooseVocabulary(options.vocabulary.value_or(settings_.loop.vocabulary));
-  if (vocabulary.file.empty()) {
-    const auto log_level = vocabulary.default_missing ? spdlog::level::warn : spdlog::level::info;
-    spdlog::log(log_level,
-                "no vocabulary ({}): relocalization is off, no loop closing (name one with "
-                "Loop.vocabulary / --vocabulary or {})",
-                vocabulary.origin, loop::kVocabularyEnvironment);
-  } else {
-    const auto start = Clock::now();
-    try {
-      places_ = loop::PlaceRecognition::fromFile(vocabulary.file);
-    } catch (const Error& e) {
-      fail("{} (vocabulary from {}; 'none' runs without one)", e.what(), vocabulary.origin);
-    }
-    spdlog::info(
-        "{}: vocabulary ({}) with {} words (k {}, L {}), loaded in {:.0f} ms: "
-        "relocalization is on",
-        vocabulary.file.string(), vocabulary.origin, places_->vocabulary().wordCount(),
-        places_->vocabulary().branching(), places_->vocabulary().depth(), msSince(start));
-    map_->setKeyFrameIndex(places_);
-    vocabulary_description_ = vocabulary.file.string();
-    vocabulary_fingerprint_ = loop::vocabularyFingerprint(places_->vocabulary());
-  }
-
-  const auto camera = frameCameraFrom(settings_, rectifier_.get());
-  frame_builder_ = std::make_unique<track::FrameBuilder>(camera, orbSettingsFrom(settings_));
-  const bool loop_closing = places_ && options.loop_closing.value_or(settings_.loop.closing);
-  if (loop_closing) {
-    loop::LoopCloserParams loop_params;
-    loop_params.threaded = !sequential_;
-    // Monocular: Sim3 loops, which also correct the scale drift.
-    loop_params.fix_scale = settings_.sensor != io::SensorType::Monocular;
-    loop_params.direct_index_levels_up = loop::PlaceRecognition::kDirectIndexLevelsUp;
-    // The mapper exists before the first keyframe reaches the closer.
-    loop_closer_ = std::make_unique<loop::LoopCloser>(
-        map_, places_->vocabulary(), places_->database(), loop_params,
-        [this] { return mapper_->pauseProcessing(); });
-    spdlog::info("loop closing is on");
-  }
-  mapping::LocalMapperParams mapper_params;
-  mapper_params.threaded = !sequential_;
-  if (settings_.sensor == io::SensorType::Monocular) mapper_params.triangulation_neighbours = 20;
-  if (loop_closer_) {
-    mapper_params.on_keyframe_processed = [closer = loop_closer_.get()](const auto& keyframe) {
-      closer->insertKeyFrame(keyframe);
-    };
-  }
-  mapper_ = std::make_unique<mapping::LocalMapper>(map_, camera, frame_builder_->pyramid(),
-                                                   mapper_params);
-  track::TrackerParams tracker_params;
-  tracker_params.max_frames_between_keyframes = std::max(1, static_cast<int>(settings_.camera.fps));
-  tracker_params.inlier_reference_half_life = tracker_params.max_frames_between_keyframes;
-  tracker_params.new_map_after_s = settings_.system.newMapAfter;
-  tracker_params.motion_evidence.enabled =
-      options.motion_evidence.value_or(settings_.dynamic.motionEvidenceFor(settings_.sensor));
-  if (stereo) {
-    // ORB-SLAM starts a stereo map from a frame with > 500 keypoints, of which typically half
-    // have a stereo match; 500 matches would delay EuRoC V1_01 by 6 frames with enhancement
-    // (~480 matches of 1200 features per frame, against ~580 without).
-    tracker_params.min_initial_features = 250;
-  }
-  if (detector_params_) {
-    tracker_params.dynamic_memory.frames = detector_params_->memory_frames;
-    tracker_params.dynamic_memory.strikes = detector_params_->memory_strikes;
-  }
-  tracker_ = std::make_unique<track::Tracker>(map_, *mapper_, camera, frame_builder_->pyramid(),
-                                              tracker_params);
-  if (places_) {
-    tracker_->setRelocalizer(
-        std::make_shared<BowRelocalizer>(places_, map_, camera, frame_builder_->pyramid()));
-  }
-  if (settings_.file) checkUnknownKeys(*settings_.file, options.strict_settings);
-}
-
-System::~System() {
-  shutdown();
-}
-
-void System::shutdown() {
-  shut_down_ = true;
-  if (detector_) detector_->stop();
-  if (mapper_) mapper_->shutdown();
-  if (loop_closer_) loop_closer_->shutdown();  // after the mapper: it feeds the closer
-}
-
-System::Images System::prepareImages(const cv::Mat& image, FrameTiming& timing,
-                                     const enhance::EnhancementPlan* plan) {
-  if (image.empty()) fail("empty image");
-  if (image.depth() != CV_8U) fail("expected an 8-bit image, got depth {}", image.depth());
-  const bool enhanced_for_detector = detector_params_ && detector_params_->image == "enhanced";
-  if (enhancer_) {
-    const auto start = Clock::now();
-    auto enhanced = plan ? enhancer_->apply(image, *plan) : enhancer_->enhance(image);
-    timing.enhance += msSince(start);
-    return {enhanced.gray, enhanced_for_detector ? enhanced.colour : image};
-  }
-  return {toGray(image), image};
-}
-
-// Runs beside prepareImages() of the left image: without enhancement, that touches no state;
-// with the left image's plan, only const (thread-safe) Enhancer calls.
-cv::Mat System::rightGray(const cv::Mat& image, FrameTiming& timing,
-                          const enhance::EnhancementPlan* left_plan) {
-  if (left_plan) {
-    const auto start = Clock::now();
-    const bool whole_plan = enhancer_->params().stereo == enhance::StereoMapping::kShared;
-    auto enhanced = whole_plan ? enhancer_->apply(image, *left_plan)
-                               : enhancer_->enhanceWith(image, *left_plan);
-    timing.enhance += msSince(start);
-    return enhanced.gray;
-  }
-  if (!right_enhancer_) {
-    FrameTiming unused;
-    return prepareImages(image, unused).gray;
-  }
-  const auto start = Clock::now();
-  auto enhanced = right_enhancer_->enhance(image);
-  timing.enhance += msSince(start);
-  return enhanced.gray;
-}
-
-SensorFrame toSensorFrame(const io::FrameData& frame) {
-  SensorFrame input;
-  input.index = frame.index;
-  input.timestamp = frame.timestamp;
-  input.image = frame.image;
-  input.right = frame.right;
-  input.depth = frame.depth;
-  return input;
-}
-
-FrameResult System::trackRgbd(std::size_t index, double timestamp, const cv::Mat& image,
-                              const cv::Mat& depth, const cv::Mat& dynamic_mask) {
-  SensorFrame frame;
-  frame.index = index;
-  frame.timestamp = timestamp;
-  frame.image = image;
-  frame.depth = depth;
-  frame.dynamic_mask = dynamic_mask;
-  return track(frame);
-}
-
-cv::Mat System::depthInMetres(const SensorFrame& frame) const {
-  if (frame.depth.empty()) fail("frame {}: RGB-D tracking needs a depth image", frame.index);
-  cv::Mat depth_m;
-  if (frame.depth.type() == CV_16UC1) {
-    frame.depth.convertTo(depth_m, CV_32F, 1.0 / settings_.depth.depthMapFactor);
-  } else if (frame.depth.type() == CV_32FC1) {
-    depth_m = frame.depth;
-  } else {
-    fail("frame {}: depth must be 16-bit raw or 32-bit float metres", frame.index);
-  }
-  return depth_m;
-}
-
-track::Frame System::buildStereoFrame(const SensorFrame& frame, FrameResult& result) {
-  FrameTiming& timing = result.timing;
-  if (frame.image.empty()) fail("frame {}: the left image is empty", frame.index);
-  if (frame.right.empty()) fail("frame {}: stereo tracking needs a right image", frame.index);
-  if (frame.right.size() != frame.image.size() || frame.right.type() != frame.image.type()) {
-    fail("frame {}: right image {}x{} ({}) differs from the left {}x{} ({})", frame.index,
-         frame.right.cols, frame.right.rows, cv::typeToString(frame.right.type()), frame.image.cols,
-         frame.image.rows, cv::typeToString(frame.image.type()));
-  }
-  if (!frame.dynamic_mask.empty() && frame.dynamic_mask.size() != frame.image.size()) {
-    fail("frame {}: the dynamic mask is {}x{}, the image {}x{}", frame.index,
-         frame.dynamic_mask.cols, frame.dynamic_mask.rows, frame.image.cols, frame.image.rows);
-  }
-  const auto start = Clock::now();
-  // The right image is rectified and enhanced beside the left one: with its own enhancer, or,
-  // for a plan shared with the left image, once the left plan is made.
-  const bool shared_plan = enhancer_ && !right_enhancer_;
-  FrameTiming right_timing;
-  auto right_job = std::async(std::launch::async, [&] {
-    const cv::Mat right = rectifier_ ? rectifier_->rectifyRight(frame.right) : frame.right;
-    return shared_plan ? right : rightGray(right, right_timing);
-  });
-  const cv::Mat left = rectifier_ ? rectifier_->rectifyLeft(frame.image) : frame.image;
-  const cv::Mat mask = rectifier_ && !frame.dynamic_mask.empty()
-                           ? rectifier_->rectifyLeft(frame.dynamic_mask)
-                           : frame.dynamic_mask;
-  std::optional<enhance::EnhancementPlan> plan;
-  std::future<cv::Mat> right_enhanced;
-  if (shared_plan) {
-    const auto plan_start = Clock::now();
-    plan = enhancer_->plan(left);
-    timing.enhance += msSince(plan_start);
-    right_enhanced = std::async(std::launch::async, [&, right = right_job.get()] {
-      return rightGray(right, right_timing, &*plan);
-    });
-  }
-  const auto images = prepareImages(left, timing, plan ? &*plan : nullptr);
-  pushForDetection(frame, images.detector);
-  const double left_enhance_ms = timing.enhance;
-  const cv::Mat gray_right = shared_plan ? right_enhanced.get() : right_job.get();
-  timing.enhance += right_timing.enhance;  // work of both, partly overlapped
-
-  return withoutDynamicFeatures(frame, cv::Mat(), result, [&] {
-    auto built =
-        frame_builder_->buildStereo(frame.index, frame.timestamp, images.gray, gray_right, mask);
-    timing.features = msSince(start) - left_enhance_ms;
-    return built;
-  });
-}
-
-void System::pushForDetection(const SensorFrame& input, const cv::Mat& detector_image) {
-  if (detector_) {
-    detector_->push(static_cast<std::int64_t>(input.index), input.timestamp, detector_image);
-  }
-}
-
-// ORB extraction (`build`); with a detector, the detection of this frame runs meanwhile on its
-// thread (paper section 3.2) and the features on moving objects are dropped afterwards.
-track::Frame System::withoutDynamicFeatures(const SensorFrame& input, const cv::Mat& depth_m,
-                                            FrameResult& result,
-                                            const std::function<track::Frame()>& build) {
-  try {
-    auto frame = build();
-    if (detector_) removeDynamicFeatures(frame, depth_m, result);
-    return frame;
-  } catch (...) {
-    if (detector_) {
-      try {
-        detector_->take(static_cast<std::int64_t>(input.index));  // not left pending
-      } catch (const Error&) {
-      }
-    }
-    throw;
-  }
-}
-
-void System::removeDynamicFeatures(track::Frame& frame, const cv::Mat& depth_m,
-                                   FrameResult& result) {
-  const auto wait = Clock::now();
-  const auto detections = detector_->take(static_cast<std::int64_t>(frame.index));
-  result.timing.detection_wait = msSince(wait);
-  result.timing.detection = detections.compute_ms;
-  result.dynamic_boxes = detect::boxesOf(detections.detections);
-  frame.dynamic_boxes = result.dynamic_boxes;
-  if (result.dynamic_boxes.empty()) return;
-
-  const auto& mask_params = detector_params_->mask;
-  cv::Mat mask = detect::makeDynamicMask(frame_builder_->camera().size(), result.dynamic_boxes,
-                                         mask_params.margin_px);
-  // RGB-D: the background seen behind a person keeps its features.
-  if (!depth_m.empty())
-    mask = detect::refineMaskWithDepth(mask, depth_m, result.dynamic_boxes, mask_params);
-  const auto& keypoints = frame.features->keypoints;
-  const auto kept = detect::filterKeypoints(keypoints, mask);
-  if (kept.size() == keypoints.size()) return;
-  std::size_t next_kept = 0;
-  for (std::size_t i = 0; i < keypoints.size(); ++i) {
-    if (next_kept < kept.size() && kept[next_kept] == static_cast<int>(i)) {
-      ++next_kept;
-    } else {
-      result.dropped_features.push_back(keypoints[i].pt);
-    }
-  }
-  track::keepFeatures(frame, kept);
-}
-
-FrameResult System::track(const SensorFrame& input) {
-  if (shut_down_) fail("frame {}: track() after shutdown() or saveMap()", input.index);
-  const auto start = Clock::now();
-  FrameResult result;
-  std::optional<track::Frame> frame;
-  if (settings_.sensor == io::SensorType::Stereo) {
-    frame = buildStereoFrame(input, result);
-  } else {
-    const auto images = prepareImages(input.image, result.timing);
-    const cv::Mat depth_m =
-        settings_.sensor == io::SensorType::Rgbd ? depthInMetres(input) : cv::Mat();
-    pushForDetection(input, images.detector);
-    frame = withoutDynamicFeatures(input, depth_m, result, [&] {
-      const auto stage = Clock::now();
-      auto built = frame_builder_->build(input.index, input.timestamp, images.gray, depth_m,
-                                         input.dynamic_mask);
-      result.timing.features = msSince(stage);
-      return built;
-    });
-  }
-  auto stage = Clock::now();
-  result.outcome = tracker_->track(std::move(*frame));
-  result.timing.tracking = msSince(stage);
-  if (rectifier_ && result.outcome.T_w_c) {
-    result.outcome.T_w_c = toCalibratedCamera(*result.outcome.T_w_c);
-  }
-  if (sequential_) {
-    stage = Clock::now();
-    mapper_->processPending();
-    if (loop_closer_) loop_closer_->processPending();
-    result.timing.mapping = msSince(stage);
-  }
-  result.timing.total = msSince(start);
+TrackResult toTrackResult(const track::TrackingOutcome& outcome, const SensorFrame& frame,
+                          double time_ms) {
+  TrackResult result;
+  result.frame = frame.index;
+  result.timestamp = frame.timestamp;
+  result.state = toTrackState(outcome.state);
+  if (outcome.T_w_c) result.T_w_c = outcome.T_w_c->matrix();
+  result.inliers = outcome.inliers;
+  result.keyframe = outcome.new_keyframe;
+  result.relocalized = outcome.relocalized;
+  result.new_map = outcome.new_map;
+  result.map = outcome.map;
+  result.time_ms = time_ms;
   return result;
 }
 
-// Tracking runs in the rectified left camera, p_rect = R_rect_c1 * p_c1 (same centre): the
-// calibrated camera's pose is T_c1_rect * T_w_rect * T_rect_c1, its world being the calibrated
-// camera at the first keyframe instead of the rectified one.
-SE3 System::toCalibratedCamera(const SE3& T_w_c) const {
-  if (!rectifier_) return T_w_c;
-  SE3 T_rect_c1 = SE3::Identity();
-  T_rect_c1.linear() = rectifier_->R_rect_c1();
-  return T_rect_c1.inverse() * T_w_c * T_rect_c1;
-}
-
-Trajectory System::toCalibratedCamera(Trajectory trajectory) const {
-  for (auto& pose : trajectory) pose.T_w_c = toCalibratedCamera(pose.T_w_c);
-  return trajectory;
-}
-
-std::map<map::MapId, Trajectory> System::mapTrajectories() const {
-  auto by_map = tracker_->trajectory().framesByMap();
-  for (auto& [id, trajectory] : by_map) trajectory = toCalibratedCamera(std::move(trajectory));
-  return by_map;
-}
-
-namespace {
-
-// The map with most frames (the lowest id on a tie; 0 when nothing was tracked).
-map::MapId mapWithMostFrames(const std::map<map::MapId, Trajectory>& by_map) {
-  map::MapId main = 0;
-  std::size_t most = 0;
-  for (const auto& [id, trajectory] : by_map) {
-    if (trajectory.size() > most) {
-      most = trajectory.size();
-      main = id;
-    }
-  }
-  return main;
-}
-
 }  // namespace
 
-map::MapId System::mainMap() const {
-  return mapWithMostFrames(tracker_->trajectory().framesByMap());
-}
-
-Trajectory System::frameTrajectory() const {
-  auto by_map = mapTrajectories();
-  const auto main = by_map.find(mapWithMostFrames(by_map));
-  return main == by_map.end() ? Trajectory{} : std::move(main->second);
-}
-
-Trajectory System::keyFrameTrajectory() const {
-  return toCalibratedCamera(track::keyFrameTrajectory(map_->keyFramesOf(mainMap())));
-}
-
-const track::FrameCamera& System::frameCamera() const {
-  return frame_builder_->camera();
-}
-
-std::size_t System::keyFrameCount() const {
-  return map_->keyFrameCount();
-}
-
-std::size_t System::mapPointCount() const {
-  return map_->mapPointCount();
-}
-
-map::MapFingerprint System::mapFingerprint() const {
-  const auto& camera = frameCamera();
-  map::MapFingerprint fingerprint;
-  fingerprint.sensor = std::string(io::toString(settings_.sensor));
-  fingerprint.image_width = camera.size().width;
-  fingerprint.image_height = camera.size().height;
-  fingerprint.camera = camera.intrinsics();
-  const auto orb = orbSettingsFrom(settings_);
-  fingerprint.orb_features = orb.nFeatures;
-  fingerprint.orb_scale_factor = orb.scaleFactor;
-  fingerprint.orb_levels = orb.nLevels;
-  fingerprint.orb_ini_fast = orb.iniThFAST;
-  fingerprint.orb_min_fast = orb.minThFAST;
-  fingerprint.vocabulary = vocabulary_fingerprint_;
-  if (places_) {
-    fingerprint.vocabulary_name =
-        std::filesystem::path(vocabulary_description_).filename().string();
+const char* toString(Sensor sensor) {
+  switch (sensor) {
+    case Sensor::Monocular:
+      return "monocular";
+    case Sensor::Stereo:
+      return "stereo";
+    case Sensor::Rgbd:
+      return "rgbd";
   }
-  return fingerprint;
+  return "unknown";
+}
+
+const char* toString(TrackState state) {
+  switch (state) {
+    case TrackState::NotInitialized:
+      return "not initialized";
+    case TrackState::Tracking:
+      return "tracking";
+    case TrackState::Lost:
+      return "lost";
+  }
+  return "unknown";
+}
+
+struct System::Impl {
+  Impl(const std::filesystem::path& settings_file, const SystemConfig& config)
+      : settings(io::loadSettings(settings_file)),
+        options(toPipelineOptions(config)),
+        pipeline(std::make_unique<Pipeline>(settings, options)) {}
+
+  // Frames numbered here; a timestamp must be finite and later than the last one.
+  SensorFrame numberedFrame(Sensor called, double timestamp) {
+    const Sensor configured = toSensor(settings.sensor);
+    if (called != configured) {
+      fail("System: track{} called, but the settings file is for a {} sensor",
+           called == Sensor::Monocular ? "Monocular"
+           : called == Sensor::Stereo  ? "Stereo"
+                                       : "Rgbd",
+           toString(configured));
+    }
+    if (!std::isfinite(timestamp)) fail("System: frame {}: timestamp is not finite", next_frame);
+    if (last_timestamp && timestamp <= *last_timestamp) {
+      fail("System: frame {}: timestamp {:.6f} is not after the last one ({:.6f})", next_frame,
+           timestamp, *last_timestamp);
+    }
+    SensorFrame frame;
+    frame.index = next_frame;
+    frame.timestamp = timestamp;
+    return frame;
+  }
+
+  TrackResult track(const SensorFrame& frame) {
+    const auto start = std::chrono::steady_clock::now();
+    const FrameResult result = pipeline->track(frame);
+    const double ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    ++next_frame;
+    last_timestamp = frame.timestamp;
+    return toTrackResult(result.outcome, frame, ms);
+  }
+
+  mutable std::mutex mutex;
+  io::Settings settings;
+  PipelineOptions options;
+  std::unique_ptr<Pipeline> pipeline;
+  std::size_t next_frame = 0;
+  std::optional<double> last_timestamp;
+};
+
+System::System(const std::filesystem::path& settings_file, const SystemConfig& config)
+    : impl_(std::make_unique<Impl>(settings_file, config)) {}
+
+System::~System() = default;
+System::System(System&&) noexcept = default;
+System& System::operator=(System&&) noexcept = default;
+
+Sensor System::sensor() const {
+  return toSensor(impl_->settings.sensor);
+}
+
+TrackResult System::trackMonocular(const cv::Mat& image, double timestamp) {
+  const std::scoped_lock lock(impl_->mutex);
+  SensorFrame frame = impl_->numberedFrame(Sensor::Monocular, timestamp);
+  frame.image = image;
+  return impl_->track(frame);
+}
+
+TrackResult System::trackStereo(const cv::Mat& left, const cv::Mat& right, double timestamp) {
+  const std::scoped_lock lock(impl_->mutex);
+  SensorFrame frame = impl_->numberedFrame(Sensor::Stereo, timestamp);
+  frame.image = left;
+  frame.right = right;
+  return impl_->track(frame);
+}
+
+TrackResult System::trackRgbd(const cv::Mat& image, const cv::Mat& depth, double timestamp) {
+  const std::scoped_lock lock(impl_->mutex);
+  SensorFrame frame = impl_->numberedFrame(Sensor::Rgbd, timestamp);
+  frame.image = image;
+  frame.depth = depth;
+  return impl_->track(frame);
 }
 
 void System::saveMap(const std::filesystem::path& file) {
-  shutdown();
-  std::lock_guard lock(map_->updateMutex());
-  map::saveMapFile(*map_, mapFingerprint(), file);
-  spdlog::info("{}: map saved ({} keyframes, {} points)", file.string(), map_->keyFrameCount(),
-               map_->mapPointCount());
+  const std::scoped_lock lock(impl_->mutex);
+  impl_->pipeline->saveMap(file);
 }
 
 void System::loadMap(const std::filesystem::path& file) {
-  if (shut_down_) fail("{}: loadMap() after shutdown()", file.string());
-  if (tracker_->state() != track::TrackingState::NotInitialized || map_->keyFrameCount() > 0) {
-    fail("{}: loadMap() must come before the first frame", file.string());
-  }
-  const auto start = Clock::now();
-  std::lock_guard lock(map_->updateMutex());
-  map::loadMapFile(file, mapFingerprint(), frame_builder_->pyramid(), *map_);
-  tracker_->startInLoadedMap();
-  spdlog::info("{}: map loaded in {:.0f} ms ({} keyframes, {} points){}", file.string(),
-               msSince(start), map_->keyFrameCount(), map_->mapPointCount(),
-               places_ ? "" : "; no vocabulary: relocalization is off");
+  const std::scoped_lock lock(impl_->mutex);
+  impl_->pipeline->loadMap(file);
 }
 
 void System::setLocalizationMode(bool on) {
-  std::lock_guard lock(map_->updateMutex());
-  tracker_->setLocalizationMode(on);
+  const std::scoped_lock lock(impl_->mutex);
+  impl_->pipeline->setLocalizationMode(on);
 }
 
 bool System::localizationMode() const {
-  return tracker_->localizationMode();
+  const std::scoped_lock lock(impl_->mutex);
+  return impl_->pipeline->localizationMode();
+}
+
+void System::reset() {
+  const std::scoped_lock lock(impl_->mutex);
+  impl_->pipeline->shutdown();
+  impl_->pipeline.reset();  // one pipeline's threads at a time
+  impl_->pipeline = std::make_unique<Pipeline>(impl_->settings, impl_->options);
+  impl_->last_timestamp.reset();
+}
+
+void System::shutdown() {
+  const std::scoped_lock lock(impl_->mutex);
+  impl_->pipeline->shutdown();
+}
+
+CameraTrajectory System::trajectory() const {
+  const std::scoped_lock lock(impl_->mutex);
+  return toCameraTrajectory(impl_->pipeline->frameTrajectory());
+}
+
+CameraTrajectory System::keyframeTrajectory() const {
+  const std::scoped_lock lock(impl_->mutex);
+  return toCameraTrajectory(impl_->pipeline->keyFrameTrajectory());
+}
+
+std::size_t System::frameCount() const {
+  const std::scoped_lock lock(impl_->mutex);
+  return impl_->next_frame;
+}
+
+std::size_t System::keyframeCount() const {
+  const std::scoped_lock lock(impl_->mutex);
+  return impl_->pipeline->keyFrameCount();
+}
+
+std::size_t System::mapPointCount() const {
+  const std::scoped_lock lock(impl_->mutex);
+  return impl_->pipeline->mapPointCount();
 }
 
 }  // namespace lumaslam

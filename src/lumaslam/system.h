@@ -1,186 +1,106 @@
 #pragma once
-// The facade the CLI and tests use: feed frames, get poses. Owns the map, the tracker (runs in
-// the caller's thread) and the local mapper (own thread, or inline when System.sequential).
+// The public API (docs/api.md), in the style of stella_vslam's system.h: build a System from a
+// settings file, feed it frames, get poses back. It includes no internal header; the library
+// behind it is lumaslam::lumaslam (find_package(lumaslam CONFIG)). Errors are thrown as
+// std::runtime_error with a message naming the file, key or value that was wrong.
+//
+// Thread safety: every member function may be called from any thread; calls are serialised
+// by one mutex inside the System (a trackX call in one thread makes saveMap in another wait for
+// the frame to finish). Local mapping, loop closing and detection run in the System's own
+// threads unless SystemConfig::sequential. Different System objects share nothing.
+#include <cstddef>
 #include <filesystem>
-#include <functional>
-#include <map>
 #include <memory>
 #include <optional>
 #include <string>
-#include <vector>
 
-#include <opencv2/core.hpp>
+#include <Eigen/Core>
+#include <opencv2/core/mat.hpp>
 
-#include "lumaslam/core/pose.h"
-#include "lumaslam/io/settings.h"
-#include "lumaslam/map/map_file.h"
-#include "lumaslam/track/tracker.h"
+#include "lumaslam/camera_pose.h"
+#include "lumaslam/export.h"
 
 namespace lumaslam {
 
-namespace camera {
-class StereoRectifier;
-}
-namespace detect {
-class DetectionWorker;
-struct DetectorParams;
-}  // namespace detect
-namespace enhance {
-class Enhancer;
-struct EnhancementPlan;
-}  // namespace enhance
-namespace io {
-struct FrameData;
-}
-namespace loop {
-class LoopCloser;
-class PlaceRecognition;
-}  // namespace loop
-namespace mapping {
-class LocalMapper;
-}
-namespace track {
-class FrameBuilder;
-}
+enum class Sensor { Monocular, Stereo, Rgbd };
+enum class TrackState { NotInitialized, Tracking, Lost };
+LUMASLAM_API const char* toString(Sensor sensor);
+LUMASLAM_API const char* toString(TrackState state);
 
-struct SystemOptions {
-  std::optional<std::string> enhance_preset;  // overrides Enhancement.preset ("off" disables)
-  std::optional<bool> sequential;             // overrides System.sequential
-  // Overrides the Detector.* choice: "yolo:MODEL.onnx", "boxes:FILE" or "none".
-  std::optional<std::string> detector;
-  // Overrides Loop.vocabulary: a vocabulary file for relocalization and loop closing, or
-  // "none". Neither set: the default vocabulary (loop/vocabulary_choice.h).
+// What a caller may change over the settings file; unset keeps the file's choice.
+struct SystemConfig {
+  std::optional<std::string> enhancement;  // Enhancement.preset: "off", "paper", "fused", ...
+  std::optional<bool> sequential;          // run every stage in the caller's thread
+  std::optional<std::string> detector;     // "yolo:MODEL.onnx", "boxes:FILE" or "none"
+  // A vocabulary file for relocalization and loop closing, or "none"; unset: Loop.vocabulary,
+  // else the default vocabulary installed with the library.
   std::optional<std::filesystem::path> vocabulary;
-  std::optional<bool> loop_closing;     // overrides Loop.closing (needs a vocabulary)
-  std::optional<bool> motion_evidence;  // overrides Dynamic.motionEvidence
-  // Settings keys nothing reads (typos, e.g. Enhancement.presett) are a warning naming the
-  // closest known key; with strict_settings an Error.
-  bool strict_settings = false;
+  std::optional<bool> loop_closing;
+  std::optional<bool> motion_evidence;  // Dynamic.motionEvidence
+  bool strict_settings = false;         // unknown settings keys are an error, not a warning
 };
 
-struct FrameTiming {  // milliseconds
-  double enhance = 0, features = 0, tracking = 0, mapping = 0, total = 0;
-  double detection_wait = 0;  // tracking thread blocked on this frame's boxes
-  double detection = 0;       // detector thread's work on this frame (inference or propagation)
-};
-
-// One frame as the sensor delivered it. Which fields are needed depends on Settings::sensor.
-struct SensorFrame {
-  std::size_t index = 0;
+// The outcome of one frame.
+struct TrackResult {
+  std::size_t frame = 0;  // numbered by the System from 0, across reset()
   double timestamp = 0.0;
-  cv::Mat image;         // left / rgb / mono: 8-bit gray or BGR
-  cv::Mat right;         // stereo: right image, same size and type as `image`
-  cv::Mat depth;         // RGB-D: CV_16U raw (divided by DepthMapFactor) or CV_32F metres
-  cv::Mat dynamic_mask;  // optional CV_8U in `image`'s pixels (rectified with it), nonzero where
-                         // features must not be taken
+  TrackState state = TrackState::NotInitialized;
+  std::optional<Eigen::Matrix4d> T_w_c;  // camera-to-world, set when tracked
+  int inliers = 0;                       // map points the pose rests on
+  bool keyframe = false;                 // the frame became a keyframe
+  bool relocalized = false;              // recovered from Lost in a known map
+  bool new_map = false;                  // started a new map of the atlas
+  std::size_t map = 0;                   // the map it was tracked in
+  double time_ms = 0.0;                  // this call's wall time
 };
 
-// A dataset frame as the sensor input (image, right, depth; no mask).
-SensorFrame toSensorFrame(const io::FrameData& frame);
-
-struct FrameResult {
-  track::TrackingOutcome outcome;
-  FrameTiming timing;
-  std::vector<cv::Rect2f> dynamic_boxes;      // this frame's detections (when a detector runs)
-  std::vector<cv::Point2f> dropped_features;  // keypoints removed by the dynamic mask
-};
-
-class System {
+class LUMASLAM_API System {
  public:
-  explicit System(const io::Settings& settings, const SystemOptions& options = {});
+  // Reads the settings file (ORB-SLAM3-style YAML, docs/settings.md); its sensor decides which
+  // trackX call is allowed.
+  explicit System(const std::filesystem::path& settings_file, const SystemConfig& config = {});
   ~System();
   System(const System&) = delete;
   System& operator=(const System&) = delete;
+  System(System&&) noexcept;
+  System& operator=(System&&) noexcept;
 
-  // Tracks one frame of the configured sensor. Throws Error for input the sensor cannot use
-  // (missing depth / right image, wrong size or type). An unrectified stereo pair (Camera2.*)
-  // is rectified first and tracked in the rectified left camera. Stereo timing: `enhance` is
-  // the work of both images (the right one runs beside the left), `features` the rest of the
-  // front end (rectification, both extractions, stereo matching) in wall time.
-  FrameResult track(const SensorFrame& frame);
+  Sensor sensor() const;
 
-  // RGB-D shorthand for track().
-  FrameResult trackRgbd(std::size_t index, double timestamp, const cv::Mat& image,
-                        const cv::Mat& depth, const cv::Mat& dynamic_mask = cv::Mat());
+  // Images: 8-bit gray or BGR. Depth: CV_16U raw (divided by the settings' DepthMapFactor) or
+  // CV_32F metres. Timestamps in seconds, finite and increasing. The images are not kept after
+  // the call returns. Calling the trackX of another sensor is an error.
+  TrackResult trackMonocular(const cv::Mat& image, double timestamp);
+  TrackResult trackStereo(const cv::Mat& left, const cv::Mat& right, double timestamp);
+  TrackResult trackRgbd(const cv::Mat& image, const cv::Mat& depth, double timestamp);
 
-  // Waits for local mapping to finish and stops its thread. Idempotent; the destructor calls it.
-  // track() after it is an Error.
-  void shutdown();
-
-  // Map files (map/map_file.h, docs/maps.md); both throw Error naming the file and the problem.
-  // saveMap first finishes local mapping and loop closing (shutdown()), then writes the atlas
-  // atomically. loadMap only before the first frame: the map must be empty, the file made with
-  // this camera, ORB settings and vocabulary; tracking then starts lost, so that the first
-  // frame relocalizes in the loaded map.
+  // Map files (docs/maps.md). saveMap finishes local mapping and loop closing first, after
+  // which the System tracks no more frames (reset() to go on). loadMap only before the first
+  // frame; the file must have been made with this camera, ORB settings and vocabulary.
   void saveMap(const std::filesystem::path& file);
   void loadMap(const std::filesystem::path& file);
-  // Track against the map without adding keyframes or maps (Tracker::setLocalizationMode).
+
+  // Localization mode: track against the map, relocalize when lost, add no keyframes.
   void setLocalizationMode(bool on);
   bool localizationMode() const;
-  // What a map file made by this System records of its settings (camera, ORB, vocabulary).
-  map::MapFingerprint mapFingerprint() const;
 
-  // Poses of the left / rgb camera as calibrated (for a rectified pair, converted back from
-  // the rectified camera): T_w_c, world = that camera at the first keyframe.
-  // Tracked frames of the main map: the map of the atlas with most frames (with one map, every
-  // tracked frame). Frames of maps never merged into it are in mapTrajectories() only.
-  Trajectory frameTrajectory() const;
-  std::map<map::MapId, Trajectory> mapTrajectories() const;  // every map's tracked frames
-  map::MapId mainMap() const;
-  Trajectory keyFrameTrajectory() const;  // keyframes of the main map
-  std::size_t keyFrameCount() const;
+  // Drops the map and starts afresh with the same settings; localization mode turns off.
+  void reset();
+  // Finishes local mapping and loop closing and stops their threads; idempotent, also done by
+  // the destructor. Poses stay readable; trackX after it is an error.
+  void shutdown();
+
+  // Tracked frames of the main map (poses refined by mapping and loop closing) and its
+  // keyframes, in the camera as calibrated. Read after shutdown() for the final poses.
+  CameraTrajectory trajectory() const;
+  CameraTrajectory keyframeTrajectory() const;
+  std::size_t frameCount() const;  // frames fed since construction
+  std::size_t keyframeCount() const;
   std::size_t mapPointCount() const;
-  const track::Tracker& tracker() const { return *tracker_; }
-  // Vocabulary + keyframe database, shared by relocalization and loop closing; null without a
-  // vocabulary ("none", or no default vocabulary found): relocalization off.
-  std::shared_ptr<loop::PlaceRecognition> placeRecognition() const { return places_; }
-  // Null when loop closing is off (no vocabulary, Loop.closing 0 or --no-loop-closing).
-  const loop::LoopCloser* loopCloser() const { return loop_closer_.get(); }
-  const io::Settings& settings() const { return settings_; }
-  // The camera tracking works in (the rectified one for an unrectified stereo pair).
-  const track::FrameCamera& frameCamera() const;
-  // "none", "yolo MODEL" or "box_file FILE".
-  const std::string& detectorDescription() const { return detector_description_; }
-  // The vocabulary file in use, or "none".
-  const std::string& vocabularyDescription() const { return vocabulary_description_; }
 
  private:
-  struct Images {
-    cv::Mat gray;      // for ORB features
-    cv::Mat detector;  // for the detector: raw or enhanced colour (Detector.image)
-  };
-  // With `plan`, the image is enhanced with it instead of its own (stereo shared plans).
-  Images prepareImages(const cv::Mat& image, FrameTiming& timing,
-                       const enhance::EnhancementPlan* plan = nullptr);
-  cv::Mat depthInMetres(const SensorFrame& frame) const;
-  cv::Mat rightGray(const cv::Mat& image, FrameTiming& timing,  // stereo right image
-                    const enhance::EnhancementPlan* left_plan = nullptr);
-  track::Frame buildStereoFrame(const SensorFrame& frame, FrameResult& result);
-  SE3 toCalibratedCamera(const SE3& T_w_c) const;  // identity unless rectifying
-  Trajectory toCalibratedCamera(Trajectory trajectory) const;
-  void pushForDetection(const SensorFrame& input, const cv::Mat& detector_image);
-  track::Frame withoutDynamicFeatures(const SensorFrame& input, const cv::Mat& depth_m,
-                                      FrameResult& result,
-                                      const std::function<track::Frame()>& build);
-  void removeDynamicFeatures(track::Frame& frame, const cv::Mat& depth_m, FrameResult& result);
-
-  io::Settings settings_;
-  bool sequential_ = false;
-  std::shared_ptr<map::Map> map_;
-  std::shared_ptr<loop::PlaceRecognition> places_;  // the Map's KeyFrameIndex
-  std::unique_ptr<loop::LoopCloser> loop_closer_;   // fed by the local mapper
-  std::unique_ptr<enhance::Enhancer> enhancer_;
-  std::unique_ptr<enhance::Enhancer> right_enhancer_;   // stereo "independent": the right's own
-  std::unique_ptr<camera::StereoRectifier> rectifier_;  // unrectified stereo pairs only
-  std::unique_ptr<detect::DetectorParams> detector_params_;
-  std::unique_ptr<detect::DetectionWorker> detector_;
-  std::string detector_description_ = "none";
-  std::string vocabulary_description_ = "none";
-  std::uint64_t vocabulary_fingerprint_ = 0;  // loop::vocabularyFingerprint, 0 without one
-  bool shut_down_ = false;
-  std::unique_ptr<track::FrameBuilder> frame_builder_;
-  std::unique_ptr<mapping::LocalMapper> mapper_;
-  std::unique_ptr<track::Tracker> tracker_;
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
 };
 
 }  // namespace lumaslam

@@ -1,6 +1,6 @@
 #pragma once
 // A FIFO of work items handled one at a time by a handler, either in the queue's own thread
-// (startThread) or in the owner's thread (processPending, the System's sequential mode). The
+// (startThread) or in the owner's thread (processPending, the Pipeline's sequential mode). The
 // keyframe queues of LocalMapper and LoopCloser. The owner starts the thread once the state its
 // handler uses is built, and calls shutdown() before destroying that state.
 #include <condition_variable>

@@ -1,5 +1,5 @@
 #pragma once
-// The place-recognition state a running System shares between tracking (relocalization) and
+// The place-recognition state a running Pipeline shares between tracking (relocalization) and
 // loop closing: the vocabulary and the keyframe database. It is the Map's KeyFrameIndex, so
 // every keyframe gets its BoW and direct index once, when it joins the map, and leaves the
 // database when it is retired. Thread-safe (the database has its own leaf lock, see map.h).

@@ -1,5 +1,7 @@
 #include "lumaslam/loop/vocabulary_choice.h"
 
+#include <dlfcn.h>
+
 #include <cstdlib>
 #include <system_error>
 
@@ -22,6 +24,18 @@ fs::path executableFolder() {
   return ec ? fs::path() : exe.parent_path();
 }
 
+// The file this code was loaded from: the installed shared library for a consumer of the
+// package (lib/liblumaslam.so), the executable when linked statically.
+fs::path loadedObjectFolder() {
+  Dl_info info{};
+  if (dladdr(reinterpret_cast<const void*>(&executableFolder), &info) == 0 || !info.dli_fname) {
+    return {};
+  }
+  std::error_code ec;
+  const fs::path object = fs::canonical(info.dli_fname, ec);
+  return ec ? fs::path() : object.parent_path();
+}
+
 bool isFile(const fs::path& path) {
   std::error_code ec;
   return fs::is_regular_file(path, ec);
@@ -42,6 +56,9 @@ std::vector<fs::path> defaultVocabularyLocations() {
   std::vector<fs::path> locations;
   if (const fs::path exe = executableFolder(); !exe.empty()) {
     locations.push_back((exe / LUMASLAM_BIN_TO_VOCABULARY_DIR / name).lexically_normal());
+  }
+  if (const fs::path lib = loadedObjectFolder(); !lib.empty() && lib != executableFolder()) {
+    locations.push_back((lib / LUMASLAM_LIB_TO_VOCABULARY_DIR / name).lexically_normal());
   }
   locations.push_back(fs::path(LUMASLAM_SOURCE_VOCABULARY_DIR) / name);
   locations.push_back(fs::path(LUMASLAM_INSTALL_VOCABULARY_DIR) / name);

@@ -1,5 +1,5 @@
 #pragma once
-// Which vocabulary a System loads: the file the settings or options name, none at all
+// Which vocabulary a Pipeline loads: the file the settings or options name, none at all
 // ("none"), or, when nothing is named, the default vocabulary shipped with lumaslam
 // (data/vocabulary/, installed to share/lumaslam/). The default is looked for in
 // $LUMASLAM_VOCABULARY, then next to the executable (../share/lumaslam/), then in the source
@@ -31,7 +31,7 @@ struct VocabularyChoice {
   bool default_missing = false;  // nothing named and no default found (warn, run without)
 };
 
-// `named`: what Loop.vocabulary / SystemOptions::vocabulary say; empty = nothing named. A
+// `named`: what Loop.vocabulary / PipelineOptions::vocabulary say; empty = nothing named. A
 // named file or one from the environment is returned even if it does not exist (loading it
 // then fails, naming it); the default locations are only taken when the file is there.
 VocabularyChoice chooseVocabulary(const std::filesystem::path& named);

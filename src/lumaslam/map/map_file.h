@@ -6,7 +6,7 @@
 // Layout, little-endian: char[8] "LUMAMAP\0" | u32 version | u32 reserved (0) | u64 payload
 // size | u64 checksum (core::Checksum over the payload) | payload: a cereal portable binary
 // archive of the fingerprint, then the map. Written to FILE.partial and renamed into place.
-// The place-recognition database is not stored: the loading System rebuilds it from the
+// The place-recognition database is not stored: the loading Pipeline rebuilds it from the
 // stored descriptors with the vocabulary the fingerprint names (the same BoW vectors; a few
 // ms per 100 keyframes), so that a map and a database can never disagree.
 #include <cstdint>

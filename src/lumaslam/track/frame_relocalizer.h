@@ -1,6 +1,6 @@
 #pragma once
 // What the tracker needs of relocalization, so that track/ does not depend on loop/ (the
-// System plugs in a BoW + PnP relocalizer when it has a vocabulary).
+// Pipeline plugs in a BoW + PnP relocalizer when it has a vocabulary).
 #include <memory>
 #include <optional>
 #include <vector>
