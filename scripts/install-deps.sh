@@ -11,6 +11,7 @@ packages=(
   libcli11-dev libspdlog-dev nlohmann-json3-dev libtbb-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libcereal-dev          # map files
+  pybind11-dev python3-dev python3-numpy  # the Python module (python/)
 )
 
 missing=()

@@ -1,7 +1,8 @@
 # ctest: install the package into a fresh prefix, build examples/track_rgbd against it with
 # find_package(lumaslam CONFIG), and run it on a synthetic sequence. Passes when the example
 # tracks, prints its ATE, and found the vocabulary installed beside the library.
-#   cmake -DBUILD_DIR=... -DSOURCE_DIR=... -DWORK_DIR=... -DCLI=... -P example_consumer.cmake
+# With PYTHON, the installed Python module must import from the prefix too.
+#   cmake -DBUILD_DIR=... -DSOURCE_DIR=... -DWORK_DIR=... -DCLI=... [-DPYTHON=...] -P ...
 function(run)
   execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE out)
   if(NOT rc EQUAL 0)
@@ -35,5 +36,12 @@ if(NOT output MATCHES "tracked [0-9]+ of 60 frames" OR NOT output MATCHES "ATE 0
 endif()
 if(NOT output MATCHES "${prefix}/share/lumaslam/[^ ]+\\.bin: vocabulary")
   message(FATAL_ERROR "the example did not load the installed vocabulary:\n${output}")
+endif()
+if(PYTHON)  # the installed Python module finds the installed library (RPATH $ORIGIN/../..)
+  run(${CMAKE_COMMAND} -E env PYTHONPATH=${prefix}/lib/python3/dist-packages
+      ${PYTHON} -c "print(__import__('lumaslam').__file__)")
+  if(NOT output MATCHES "^${prefix}/lib/python3/dist-packages/lumaslam")
+    message(FATAL_ERROR "python imported lumaslam from elsewhere: ${output}")
+  endif()
 endif()
 file(REMOVE_RECURSE ${WORK_DIR})
