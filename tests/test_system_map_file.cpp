@@ -139,6 +139,65 @@ TEST(SystemMapFile, BadFilesAreClearErrorsAndLoadNothing) {
   EXPECT_TRUE(loadError(room.file, settings).empty());
 }
 
+// Stereo and monocular maps: saved, loaded (same bytes when saved again) and localized in on
+// the frames they were made from. Monocular poses are compared after Sim3 alignment (the map
+// has its own scale), stereo with SE3.
+struct SensorCase {
+  const char* preset;
+  io::SensorType sensor;
+  eval::AlignMode align;
+};
+
+class SystemMapFileSensors : public ::testing::TestWithParam<SensorCase> {};
+
+TEST_P(SystemMapFileSensors, RoundTripAndLocalization) {
+  const SensorCase c = GetParam();
+  TempDir dir("map_file_sensor");
+  const int frames = 120;
+  const synth::SequenceRenderer sequence(synth::findPreset(c.preset), frames, 1);
+  const io::Settings settings = presetSettings(sequence, {}, c.sensor);
+  {
+    Pipeline mapping(settings, quietOptions());
+    for (int i = 0; i < frames; ++i) mapping.track(sensorFrame(sequence.render(i), c.sensor));
+    mapping.saveMap(dir.path() / "room.map");
+  }
+  Pipeline reloaded(settings, quietOptions());
+  reloaded.loadMap(dir.path() / "room.map");
+  EXPECT_GT(reloaded.keyFrameCount(), 2U);
+  reloaded.saveMap(dir.path() / "again.map");
+  EXPECT_TRUE(readBytes(dir.path() / "room.map") == readBytes(dir.path() / "again.map"));
+
+  Pipeline localizing(settings, quietOptions());
+  localizing.loadMap(dir.path() / "room.map");
+  localizing.setLocalizationMode(true);
+  const std::size_t keyframes = localizing.keyFrameCount();
+  Trajectory ground_truth;
+  std::size_t localized = 0;
+  for (int i = 0; i < frames; ++i) {
+    const auto frame = sequence.render(i);
+    const auto result = localizing.track(sensorFrame(frame, c.sensor));
+    if (result.outcome.state == track::TrackingState::Ok) ++localized;
+    ground_truth.push_back({frame.timestamp(), frame.cam0.T_w_c});
+  }
+  localizing.shutdown();
+  EXPECT_GE(static_cast<double>(localized), 0.95 * frames);
+  EXPECT_EQ(localizing.keyFrameCount(), keyframes);
+  eval::EvaluationOptions options;
+  options.align = c.align;
+  const auto report = eval::evaluate(localizing.frameTrajectory(), ground_truth, options);
+  spdlog::info("{}: localized {}/{}, ATE {:.4f} m", c.preset, localized, frames,
+               report.ate.stats.rmse);
+  EXPECT_LE(report.ate.stats.rmse, 0.01);
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Sensors, SystemMapFileSensors,
+    ::testing::Values(SensorCase{"xyz-stereo", io::SensorType::Stereo, eval::AlignMode::SE3},
+                      SensorCase{"xyz-rgbd", io::SensorType::Monocular, eval::AlignMode::Sim3}),
+    [](const auto& info) {
+      return std::string(info.param.sensor == io::SensorType::Stereo ? "Stereo" : "Monocular");
+    });
+
 TEST(SystemMapFile, LoadAfterTheFirstFrameIsAnError) {
   TempDir dir("map_file");
   const auto room = mapRoom(dir.path() / "room.map", 30);
