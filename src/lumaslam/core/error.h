@@ -1,5 +1,5 @@
 #pragma once
-// Error convention (design/architecture.md): library code throws lumaslam::Error with a
+// Error convention (docs/architecture.md): library code throws lumaslam::Error with a
 // message that names the file/key/value that was wrong; the CLI prints it and exits non-zero.
 #include <stdexcept>
 #include <string>

@@ -1,5 +1,5 @@
 #pragma once
-// Pose conventions (design/architecture.md): T_a_b maps points from frame b into frame a,
+// Pose conventions (docs/architecture.md): T_a_b maps points from frame b into frame a,
 // so T_w_c is the camera-to-world pose. Timestamps are seconds (double).
 #include <vector>
 
