@@ -1,5 +1,5 @@
 #pragma once
-// The parts of the Python module `lumaslam` (python/README.md), one file each.
+// The parts of the Python module `lumaslam` (docs/api.md, "Python"), one file each.
 #include <pybind11/pybind11.h>
 
 namespace lumaslam::python {

@@ -24,7 +24,7 @@ struct DatasetFrame {
 class LUMASLAM_API Dataset {
  public:
   // spec as `lumaslam run --dataset`: "tum:PATH", "euroc:PATH", "kitti:PATH", "folder:PATH",
-  // "video:FILE", ... (docs/datasets.md). Throws std::runtime_error naming the missing file.
+  // "video:FILE", ... (README, "CLI tour"). Throws std::runtime_error naming the missing file.
   explicit Dataset(const std::string& spec, std::optional<std::size_t> max_frames = {});
   ~Dataset();
   Dataset(Dataset&&) noexcept;

@@ -492,10 +492,11 @@ map::MapFingerprint Pipeline::mapFingerprint() const {
 
 void Pipeline::saveMap(const std::filesystem::path& file) {
   shutdown();
+  const auto start = Clock::now();
   std::lock_guard lock(map_->updateMutex());
   map::saveMapFile(*map_, mapFingerprint(), file);
-  spdlog::info("{}: map saved ({} keyframes, {} points)", file.string(), map_->keyFrameCount(),
-               map_->mapPointCount());
+  spdlog::info("{}: map saved in {:.0f} ms ({} keyframes, {} points)", file.string(),
+               msSince(start), map_->keyFrameCount(), map_->mapPointCount());
 }
 
 void Pipeline::loadMap(const std::filesystem::path& file) {

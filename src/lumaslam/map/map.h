@@ -15,7 +15,7 @@
 //      its calls, which the Map makes with none of its own locks held.
 // Atlas (ORB-SLAM3): the Map holds every map the tracker started; each keyframe carries its
 // map's id, maps share no covisibility, and merging relabels one map's keyframes with the
-// other's id (loop/map_merger.h). Each map's first keyframe is its origin: never retired, and
+// other's id (loop/map_merge.h). Each map's first keyframe is its origin: never retired, and
 // fixed in bundle adjustment (the gauge).
 // Objects are never deleted under someone's feet: retiring marks them bad and removes them
 // from the Map; shared_ptrs held elsewhere keep them alive until released.
