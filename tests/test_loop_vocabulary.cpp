@@ -198,6 +198,25 @@ TEST(LoopVocabulary, BinaryRoundTripIsExact) {
   EXPECT_EQ(loop::loadAnyVocabulary(file), loaded);
 }
 
+// Saving goes through FILE.partial: a save that cannot be put in place is an error naming the
+// file and leaves what was there (here a folder in the way) and no partial file.
+TEST(LoopVocabulary, AFailedSaveIsAnErrorAndLeavesNoPartialFile) {
+  const test::TempDir dir("vocab_atomic");
+  const auto file = dir.path() / "vocab.bin";
+  std::filesystem::create_directories(file / "in_the_way");
+  for (const bool text : {false, true}) {
+    try {
+      text ? loop::saveDbow2Text(trainedVocabulary(), file)
+           : loop::saveVocabulary(trainedVocabulary(), file);
+      FAIL() << "saving over a folder did not throw";
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find("vocab.bin"), std::string::npos) << e.what();
+    }
+    EXPECT_TRUE(std::filesystem::is_directory(file / "in_the_way"));
+    EXPECT_FALSE(std::filesystem::exists(dir.path() / "vocab.bin.partial"));
+  }
+}
+
 TEST(LoopVocabulary, Dbow2TextRoundTripIsExact) {
   const test::TempDir dir("vocab_text");
   const auto file = dir.path() / "voc.txt";

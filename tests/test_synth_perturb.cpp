@@ -134,3 +134,28 @@ TEST(SynthPerturb, EurocDatasetBothCamerasAndBadInput) {
     EXPECT_NE(std::string(e.what()).find("cam0"), std::string::npos) << e.what();
   }
 }
+
+// A perturb that fails half way (one corrupt image) leaves no half-perturbed dataset: the
+// earlier output stays as it was and no OUT.partial is left behind; a perturb that succeeds
+// replaces the earlier output whole.
+TEST(SynthPerturb, AFailedRunLeavesTheEarlierOutputAndNoPartialFolder) {
+  lumaslam::test::TempDir dir("synth_perturb_atomic");
+  const fs::path in = dir.path() / "in", out = dir.path() / "out";
+  writeSequence(in, "xyz-rgbd", 4, 2);
+  fs::create_directories(out);
+  std::ofstream(out / "earlier.txt") << "an earlier result\n";
+  for (const auto& entry : fs::directory_iterator(in / "rgb")) {
+    std::ofstream(entry.path(), std::ios::trunc) << "not a png";
+    break;
+  }
+  EXPECT_THROW(perturbDataset(in, out, PerturbModel::Dark, 2, 1), lumaslam::Error);
+  EXPECT_EQ(filesUnder(out), std::vector<fs::path>{"earlier.txt"});
+  EXPECT_FALSE(fs::exists(dir.path() / "out.partial"));
+
+  writeSequence(in, "xyz-rgbd", 4, 2);  // repaired input
+  EXPECT_EQ(perturbDataset(in, out, PerturbModel::Dark, 2, 1), 4);
+  EXPECT_FALSE(fs::exists(out / "earlier.txt"));
+  EXPECT_TRUE(fs::exists(out / "rgb.txt"));
+  EXPECT_TRUE(fs::exists(out / "perturbation.txt"));
+  EXPECT_FALSE(fs::exists(dir.path() / "out.partial"));
+}

@@ -12,6 +12,7 @@
 #include "lumaslam/core/checksum.h"
 #include "lumaslam/core/error.h"
 #include "lumaslam/core/read_file.h"
+#include "lumaslam/io/output_file.h"
 
 namespace lumaslam::loop {
 
@@ -144,8 +145,8 @@ void saveVocabulary(const Vocabulary& vocabulary, const std::filesystem::path& f
   header.depth = static_cast<std::uint32_t>(data.depth);
   header.node_count = static_cast<std::uint32_t>(data.nodeCount());
   header.word_count = static_cast<std::uint32_t>(data.wordCount());
-  std::ofstream out(file, std::ios::binary | std::ios::trunc);
-  if (!out) fail("{}: cannot write vocabulary file", file.string());
+  io::OutputFile output(file);  // FILE.partial, renamed into place when complete
+  std::ostream& out = output.stream();
   out.write(reinterpret_cast<const char*>(&header), sizeof(header));
   Checksum checksum;
   forEachArray(data, [&](const void* p, std::size_t size) {
@@ -154,7 +155,7 @@ void saveVocabulary(const Vocabulary& vocabulary, const std::filesystem::path& f
   });
   const std::uint64_t sum = checksum.value();
   out.write(reinterpret_cast<const char*>(&sum), sizeof(sum));
-  if (!out) fail("{}: error while writing vocabulary file", file.string());
+  output.commit();
 }
 
 Vocabulary loadVocabulary(const std::filesystem::path& file) {
@@ -321,10 +322,9 @@ void saveDbow2Text(const Vocabulary& vocabulary, const std::filesystem::path& fi
     }
     fmt::format_to(std::back_inserter(text), " {}\n", leaf ? d.word_weight[d.node_word[n]] : 0.0F);
   }
-  std::ofstream out(file, std::ios::binary | std::ios::trunc);
-  if (!out) fail("{}: cannot write vocabulary file", file.string());
-  out.write(text.data(), static_cast<std::streamsize>(text.size()));
-  if (!out) fail("{}: error while writing vocabulary file", file.string());
+  io::OutputFile output(file);
+  output.stream().write(text.data(), static_cast<std::streamsize>(text.size()));
+  output.commit();
 }
 
 bool isBinaryVocabulary(const std::filesystem::path& file) {

@@ -10,6 +10,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "lumaslam/core/error.h"
+#include "lumaslam/io/output_file.h"
 
 namespace lumaslam::synth {
 
@@ -39,23 +40,22 @@ void writeImage(const fs::path& path, const cv::Mat& image) {
   if (!ok) fail("{}: cannot write image", path.string());
 }
 
+// A list file, checked and put in place atomically (io::OutputFile) when it goes out of scope
+// without an exception: the lists are written after the images, so a dataset folder has its
+// rgb.txt / data.csv only once it is complete.
 class TextFile {
  public:
-  explicit TextFile(fs::path path) : path_(std::move(path)), stream_(path_) {
-    if (!stream_) fail("{}: cannot open for writing", path_.string());
-  }
+  explicit TextFile(fs::path path) : file_(std::move(path)) {}
   template <typename... Args>
   void line(fmt::format_string<Args...> format, Args&&... args) {
-    stream_ << fmt::format(format, std::forward<Args>(args)...) << '\n';
+    file_.stream() << fmt::format(format, std::forward<Args>(args)...) << '\n';
   }
   ~TextFile() noexcept(false) {
-    stream_.close();
-    if (!stream_ && std::uncaught_exceptions() == 0) fail("{}: write failed", path_.string());
+    if (std::uncaught_exceptions() == 0) file_.commit();
   }
 
  private:
-  fs::path path_;
-  std::ofstream stream_;
+  io::OutputFile file_;
 };
 
 cv::Mat depthToPng(const cv::Mat& depth_m) {

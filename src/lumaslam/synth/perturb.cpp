@@ -10,6 +10,7 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "lumaslam/core/error.h"
+#include "lumaslam/io/output_file.h"
 #include "lumaslam/synth/lighting.h"
 #include "lumaslam/synth/random.h"
 
@@ -179,19 +180,29 @@ cv::Mat perturbImage(const cv::Mat& image, PerturbModel model, int level, int in
   return exposeImage(displayToLinear(image), signal, gain, dark_level, sensor, noise_key, field);
 }
 
-int perturbDataset(const fs::path& in, const fs::path& out, PerturbModel model, int level,
-                   std::uint64_t seed) {
-  checkLevel(level);
-  if (!fs::is_directory(in)) fail("{}: input dataset folder does not exist", in.string());
+namespace {
+
+// The perturbed copy is made in OUT.partial and renamed to OUT when every image is written, so
+// that an interrupted or failed run never leaves a dataset with half of its images perturbed.
+fs::path workFolderFor(const fs::path& out) {
+  fs::path work = out;
+  work += ".partial";
+  return work;
+}
+
+void replaceFolder(const fs::path& work, const fs::path& out) {
   std::error_code ec;
-  if (fs::exists(out) && fs::equivalent(in, out, ec))
-    fail("{}: output must differ from the input", out.string());
+  fs::remove_all(out, ec);
+  if (ec) fail("{}: cannot replace the earlier output: {}", out.string(), ec.message());
+  fs::rename(work, out, ec);
+  if (ec) fail("{}: cannot put the perturbed dataset in place: {}", out.string(), ec.message());
+}
+
+std::vector<ImageJob> imageJobs(const fs::path& in, const fs::path& out) {
   std::vector<ImageJob> jobs;
-  const bool tum = fs::exists(in / "rgb.txt");
-  const bool euroc = fs::is_directory(in / "mav0");
-  if (tum) {
+  if (fs::exists(in / "rgb.txt")) {
     addCameraJobs(in / "rgb", out / "rgb", 0, false, jobs);
-  } else if (euroc) {
+  } else if (fs::is_directory(in / "mav0")) {
     for (int camera = 0; camera < 2; ++camera) {
       const fs::path dir = in / "mav0" / fmt::format("cam{}", camera) / "data";
       if (camera == 1 && !fs::exists(dir)) break;
@@ -201,12 +212,11 @@ int perturbDataset(const fs::path& in, const fs::path& out, PerturbModel model, 
     fail("{}: not a TUM RGB-D folder (rgb.txt) nor an EuRoC folder (mav0/)", in.string());
   }
   if (jobs.empty()) fail("{}: no camera images found", in.string());
+  return jobs;
+}
 
-  fs::create_directories(out, ec);
-  if (ec) fail("{}: cannot create directory: {}", out.string(), ec.message());
-  fs::copy(in, out, fs::copy_options::recursive | fs::copy_options::overwrite_existing, ec);
-  if (ec) fail("{}: cannot copy the dataset to {}: {}", in.string(), out.string(), ec.message());
-
+void perturbImages(const std::vector<ImageJob>& jobs, PerturbModel model, int level,
+                   std::uint64_t seed) {
   tbb::parallel_for(size_t{0}, jobs.size(), [&](size_t i) {
     const ImageJob& job = jobs[i];
     const cv::Mat image = cv::imread(job.source.string(), cv::IMREAD_UNCHANGED);
@@ -220,10 +230,37 @@ int perturbDataset(const fs::path& in, const fs::path& out, PerturbModel model, 
     if (!cv::imwrite(job.target.string(), result))
       fail("{}: cannot write image", job.target.string());
   });
-  std::ofstream note(out / "perturbation.txt");
-  note << "# lumaslam perturb of " << in.string() << "\n"
-       << describePerturbation(model, level) << "\nseed " << seed << "\n";
-  if (!note) fail("{}: cannot write", (out / "perturbation.txt").string());
+}
+
+}  // namespace
+
+int perturbDataset(const fs::path& in, const fs::path& out, PerturbModel model, int level,
+                   std::uint64_t seed) {
+  checkLevel(level);
+  if (!fs::is_directory(in)) fail("{}: input dataset folder does not exist", in.string());
+  std::error_code ec;
+  if (fs::exists(out) && fs::equivalent(in, out, ec))
+    fail("{}: output must differ from the input", out.string());
+  const fs::path work = workFolderFor(out);
+  const std::vector<ImageJob> jobs = imageJobs(in, work);
+
+  fs::remove_all(work, ec);
+  fs::create_directories(work, ec);
+  if (ec) fail("{}: cannot create directory: {}", work.string(), ec.message());
+  fs::copy(in, work, fs::copy_options::recursive | fs::copy_options::overwrite_existing, ec);
+  if (ec) fail("{}: cannot copy the dataset to {}: {}", in.string(), work.string(), ec.message());
+
+  try {
+    perturbImages(jobs, model, level, seed);
+    io::OutputFile note(work / "perturbation.txt");
+    note.stream() << "# lumaslam perturb of " << in.string() << "\n"
+                  << describePerturbation(model, level) << "\nseed " << seed << "\n";
+    note.commit();
+  } catch (...) {
+    fs::remove_all(work, ec);
+    throw;
+  }
+  replaceFolder(work, out);
   spdlog::info("perturb: {} images of {} -> {} ({})", jobs.size(), in.string(), out.string(),
                describePerturbation(model, level));
   return static_cast<int>(jobs.size());
