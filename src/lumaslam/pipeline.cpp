@@ -6,7 +6,7 @@
 
 #include <spdlog/spdlog.h>
 
-#include "lumaslam/bow_relocalizer.h"
+#include "lumaslam/loop/bow_frame_relocalizer.h"
 #include "lumaslam/camera/stereo_rectifier.h"
 #include "lumaslam/core/error.h"
 #include "lumaslam/core/gray_image.h"
@@ -177,7 +177,7 @@ Pipeline::Pipeline(const io::Settings& settings, const PipelineOptions& options)
                                               tracker_params);
   if (places_) {
     tracker_->setRelocalizer(
-        std::make_shared<BowRelocalizer>(places_, map_, camera, frame_builder_->pyramid()));
+        std::make_shared<loop::BowFrameRelocalizer>(places_, map_, camera, frame_builder_->pyramid()));
   }
   if (settings_.file) checkUnknownKeys(*settings_.file, options.strict_settings);
 }

@@ -9,23 +9,23 @@
 #include "lumaslam/track/frame_camera.h"
 #include "lumaslam/track/frame_relocalizer.h"
 
-namespace lumaslam {
+namespace lumaslam::loop {
 
-class BowRelocalizer : public track::FrameRelocalizer {
+class BowFrameRelocalizer : public track::FrameRelocalizer {
  public:
-  BowRelocalizer(std::shared_ptr<const loop::PlaceRecognition> places,
-                 std::shared_ptr<const map::Map> map, const track::FrameCamera& camera,
-                 std::shared_ptr<const feature::ScaleLevels> pyramid);
+  BowFrameRelocalizer(std::shared_ptr<const PlaceRecognition> places,
+                      std::shared_ptr<const map::Map> map, const track::FrameCamera& camera,
+                      std::shared_ptr<const feature::ScaleLevels> pyramid);
 
   std::optional<track::Relocalization> relocalize(const track::Frame& frame) const override;
 
  private:
-  std::shared_ptr<const loop::PlaceRecognition> places_;
+  std::shared_ptr<const PlaceRecognition> places_;
   std::shared_ptr<const map::Map> map_;
   std::shared_ptr<const feature::ScaleLevels> pyramid_;
   CameraIntrinsics intrinsics_;
   cv::Rect2f bounds_;
-  loop::Relocalizer relocalizer_;
+  Relocalizer relocalizer_;
 };
 
-}  // namespace lumaslam
+}  // namespace lumaslam::loop
