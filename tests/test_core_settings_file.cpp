@@ -50,9 +50,9 @@ TEST(SettingsFile, ErrorsNameFileKeyAndExpectedType) {
     EXPECT_NE(std::string(e.what()).find("Camera.fy"), std::string::npos);
     EXPECT_NE(std::string(e.what()).find("number"), std::string::npos);
   }
-  EXPECT_THROW((void)s.get<double>("Camera.type"), Error);    // string where number expected
-  EXPECT_THROW((void)s.get<int>("Camera.fx"), Error);         // 535.4 is no integer
-  EXPECT_THROW((void)s.get<int>("Camera.type", 3), Error);    // present but wrong type
+  EXPECT_THROW((void)s.get<double>("Camera.type"), Error);  // string where number expected
+  EXPECT_THROW((void)s.get<int>("Camera.fx"), Error);       // 535.4 is no integer
+  EXPECT_THROW((void)s.get<int>("Camera.type", 3), Error);  // present but wrong type
   EXPECT_THROW((void)s.getMatrix("Stereo.T_c1_c2", 3, 3), Error);
 }
 
@@ -67,6 +67,86 @@ TEST(SettingsFile, MissingOrBrokenFileIsAClearError) {
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("broken.yaml"), std::string::npos);
   }
+}
+
+std::string errorOf(const std::string& yaml) {
+  try {
+    (void)SettingsFile::fromString(yaml, "settings.yaml");
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "no error";
+}
+
+TEST(SettingsFile, DuplicateKeyNamesTheKeyAndBothLines) {
+  EXPECT_EQ(errorOf("%YAML:1.0\nCamera.fx: 1\nCamera.fy: 2\nCamera.fx: 3\n"),
+            "settings.yaml: key 'Camera.fx' is set twice: lines 2 and 4");
+  // Nested maps are flattened: the same key written flat and nested is set twice too.
+  EXPECT_EQ(errorOf("System:\n  sequential: 1\n  sequential: 0\n"),
+            "settings.yaml: key 'System.sequential' is set twice: lines 2 and 3");
+  EXPECT_EQ(errorOf("%YAML:1.0\n---\nCamera.fx: 1  # focal\n\nCamera:\n   fy: 2\n   fx: 3\n"),
+            "settings.yaml: key 'Camera.fx' is set twice: lines 3 and 7");
+}
+
+TEST(SettingsFile, KeyLikeTextInCommentsStringsAndListsIsNoDuplicate) {
+  const auto s = SettingsFile::fromString(
+      "%YAML:1.0\n"
+      "# Camera.fx: 2\n"
+      "Camera.fx: 1 # Camera.fx: 3\n"
+      "Name: \"Camera.fx: 4\"\n"
+      "Enhancement:\n"
+      "  preset: \"best\"\n"
+      "Detector:\n"
+      "  preset: \"none\"\n"
+      "Stereo.T_c1_c2: !!opencv-matrix\n"
+      "   rows: 1\n"
+      "   cols: 2\n"
+      "   dt: d\n"
+      "   data: [ 1.0,\n"
+      "           2.0 ]\n"
+      "Other.T: !!opencv-matrix\n"
+      "   rows: 1\n"
+      "   cols: 2\n"
+      "   dt: d\n"
+      "   data: [ 1.0, 2.0 ]\n",
+      "settings.yaml");
+  EXPECT_DOUBLE_EQ(s.get<double>("Camera.fx"), 1.0);
+  EXPECT_EQ(s.get<std::string>("Detector.preset"), "none");
+}
+
+TEST(SettingsFile, SyntaxErrorNamesFileAndLine) {
+  // An unclosed '[' is found where the next key starts (line 4 of the file as written).
+  EXPECT_EQ(errorOf("%YAML:1.0\nCamera.fx: 1\nCamera.fy: [1, 2\nCamera.cx: 3\n"),
+            "settings.yaml: line 4: not a valid settings file: Incorrect indentation");
+  // Without the %YAML header (added before parsing) the line is still the file's own.
+  EXPECT_EQ(errorOf("Camera:\n  fx: 1\n   fy: 2\n"),
+            "settings.yaml: line 3: not a valid settings file: Incorrect indentation");
+}
+
+TEST(SettingsFile, Utf8ByteOrderMarkIsSkipped) {
+  const auto with_header = SettingsFile::fromString("\xEF\xBB\xBF%YAML:1.0\nCamera.fx: 535.4\n");
+  EXPECT_DOUBLE_EQ(with_header.get<double>("Camera.fx"), 535.4);
+  const auto without_header = SettingsFile::fromString(
+      "\xEF\xBB\xBF"
+      "Camera.fx: 535.4\n");
+  EXPECT_DOUBLE_EQ(without_header.get<double>("Camera.fx"), 535.4);
+  EXPECT_EQ(without_header.keys(), std::vector<std::string>{"Camera.fx"});
+}
+
+TEST(SettingsFile, IntegerOutOfRangeIsReportedAsWritten) {
+  const auto s = SettingsFile::fromString(
+      "ORBextractor.nFeatures: 3000000000\nORBextractor:\n  nLevels: -3e9\nCamera.fx: 3e9\n",
+      "settings.yaml");
+  try {
+    (void)s.get<int>("ORBextractor.nFeatures");
+    FAIL() << "3000000000 read as an int";
+  } catch (const Error& e) {
+    EXPECT_STREQ(e.what(),
+                 "settings.yaml: key 'ORBextractor.nFeatures': 3000000000 is out of range "
+                 "(expected an integer from -2147483648 to 2147483647)");
+  }
+  EXPECT_THROW((void)s.get<int>("ORBextractor.nLevels", 8), Error);
+  EXPECT_DOUBLE_EQ(s.get<double>("Camera.fx"), 3e9);  // a number, not an integer: fine
 }
 
 }  // namespace

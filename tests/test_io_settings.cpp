@@ -325,6 +325,11 @@ TEST(Settings, BadSettingsNameFileKeyAndValue) {
       {with(kMonoNew, "File.version:", "File.version: \"2.0\""), {"File.version", "2.0"}},
       {kMonoNew + "System.sensor: \"lidar\"\n", {"System.sensor", "lidar"}},
       {kMonoNew + "System.queueCapacity: 0\n", {"System.queueCapacity", "0"}},
+      // cv::FileStorage keeps 32-bit integers: the value as written, not -1294967296.
+      {with(kMonoNew, "ORBextractor.nFeatures:", "ORBextractor.nFeatures: 3000000000"),
+       {"test.yaml", "ORBextractor.nFeatures", "3000000000 is out of range"}},
+      {kMonoNew + "Camera1.fx: 510.0\n",
+       {"test.yaml: key 'Camera1.fx' is set twice: lines 4 and 18"}},
       {kMonoNew + "Camera.newWidth: 320\n", {"Camera.newHeight"}},
       {stereoRectified, {"test.yaml", "Stereo.b", "baseline"}},
       {stereoRectified + "Stereo.b: -0.1\n", {"Stereo.b", "-0.1"}},

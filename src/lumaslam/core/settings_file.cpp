@@ -4,7 +4,10 @@
 #include <cctype>
 
 #include <cmath>
+#include <cstdlib>
 #include <fstream>
+#include <limits>
+#include <regex>
 #include <sstream>
 
 #include "lumaslam/core/error.h"
@@ -73,8 +76,9 @@ std::optional<T> convert(const cv::FileNode& n) {
 
 }  // namespace
 
-SettingsFile::SettingsFile(cv::FileStorage storage, std::string origin)
-    : storage_(std::move(storage)), origin_(std::move(origin)) {}
+SettingsFile::SettingsFile(cv::FileStorage storage, std::string origin,
+                           std::map<std::string, KeyLine> key_lines)
+    : storage_(std::move(storage)), origin_(std::move(origin)), key_lines_(std::move(key_lines)) {}
 
 SettingsFile SettingsFile::open(const std::filesystem::path& path) {
   std::error_code ec;
@@ -87,20 +91,44 @@ SettingsFile SettingsFile::open(const std::filesystem::path& path) {
   return fromString(text.str(), path.string());
 }
 
+namespace {
+
+constexpr std::string_view kUtf8Bom = "\xEF\xBB\xBF";
+
+bool isYaml(const std::string& text) {
+  return text.rfind("<?xml", 0) != 0 && text.rfind("{", 0) != 0;
+}
+
+// cv::FileStorage puts "(LINE): problem" in the exception's func field (or its message).
+[[noreturn]] void failParse(const cv::Exception& e, const std::string& origin, int line_offset) {
+  static const std::regex kLine(R"(\((\d+)\): ([^'\n]*))");
+  std::smatch match;
+  const std::string text = e.func + "\n" + e.msg;
+  if (std::regex_search(text, match, kLine)) {
+    fail("{}: line {}: not a valid settings file: {}", origin, std::stoi(match[1]) - line_offset,
+         match[2].str());
+  }
+  fail("{}: not a valid settings file: {}", origin, e.err);
+}
+
+}  // namespace
+
 SettingsFile SettingsFile::fromString(const std::string& yaml, const std::string& origin) {
   std::string text = yaml;
+  if (text.starts_with(kUtf8Bom)) text.erase(0, kUtf8Bom.size());
+  std::map<std::string, KeyLine> key_lines;
+  if (isYaml(text)) key_lines = scanKeyLines(text, origin);
   // cv::FileStorage needs the %YAML header; ORB-SLAM files have it, hand-written ones may not.
-  if (text.rfind("%YAML", 0) != 0 && text.rfind("<?xml", 0) != 0 && text.rfind("{", 0) != 0) {
-    text = "%YAML:1.0\n" + text;
-  }
+  const bool add_header = isYaml(text) && !text.starts_with("%YAML");
+  if (add_header) text = "%YAML:1.0\n" + text;
   cv::FileStorage storage;
   try {
     storage.open(text, cv::FileStorage::READ | cv::FileStorage::MEMORY);
   } catch (const cv::Exception& e) {
-    fail("{}: not a valid settings file: {}", origin, e.err);
+    failParse(e, origin, add_header ? 1 : 0);
   }
   if (!storage.isOpened()) fail("{}: not a valid settings file", origin);
-  return SettingsFile(std::move(storage), origin);
+  return SettingsFile(std::move(storage), origin, std::move(key_lines));
 }
 
 cv::FileNode SettingsFile::node(std::string_view key) const {
@@ -221,10 +249,27 @@ void SettingsFile::invalid(std::string_view key, std::string_view why) const {
   fail("{}: key '{}': {}", origin_, key, why);
 }
 
+// cv::FileStorage keeps integers in 32 bits: 3000000000 would be read as -1294967296.
+void SettingsFile::requireIntRange(std::string_view key) const {
+  const auto it = key_lines_.find(std::string(key));
+  if (it == key_lines_.end()) return;
+  const std::string& written = it->second.value;
+  char* end = nullptr;
+  const double value = std::strtod(written.c_str(), &end);
+  if (end == written.c_str() || *end != '\0') return;
+  constexpr int kMin = std::numeric_limits<int>::min();
+  constexpr int kMax = std::numeric_limits<int>::max();
+  if (value < kMin || value > kMax) {
+    invalid(key, fmt::format("{} is out of range (expected an integer from {} to {})", written,
+                             kMin, kMax));
+  }
+}
+
 template <typename T>
 std::optional<T> SettingsFile::find(std::string_view key) const {
   const auto n = node(key);
   if (n.empty() || n.isNone()) return std::nullopt;
+  if constexpr (std::is_same_v<T, int>) requireIntRange(key);
   auto value = convert<T>(n);
   if (!value) invalid(key, fmt::format("expected {}, found {}", typeName<T>(), describe(n)));
   return value;

@@ -4,6 +4,7 @@
 // looked up as a nested path (Camera: {fx: ...}). Every failure names file, key and the
 // expected type.
 #include <filesystem>
+#include <map>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -14,11 +15,14 @@
 
 #include <opencv2/core.hpp>
 
+#include "lumaslam/core/settings_lines.h"
+
 namespace lumaslam::core {
 
 class SettingsFile {
  public:
-  // Throws Error if the file is missing or is not a YAML/XML/JSON file cv::FileStorage reads.
+  // Throws Error if the file is missing, is not a YAML/XML/JSON file cv::FileStorage reads
+  // (naming the line when OpenCV gives one) or sets a key twice. A UTF-8 BOM is skipped.
   static SettingsFile open(const std::filesystem::path& path);
   // Parses settings from text (tests, embedded defaults); `origin` names it in errors.
   static SettingsFile fromString(const std::string& yaml, const std::string& origin = "<string>");
@@ -49,11 +53,14 @@ class SettingsFile {
   std::vector<std::string> unaskedKeys() const;
 
  private:
-  SettingsFile(cv::FileStorage storage, std::string origin);
+  SettingsFile(cv::FileStorage storage, std::string origin,
+               std::map<std::string, KeyLine> key_lines);
   cv::FileNode node(std::string_view key) const;
+  void requireIntRange(std::string_view key) const;
 
   cv::FileStorage storage_;
   std::string origin_;
+  std::map<std::string, KeyLine> key_lines_;  // empty for XML/JSON
   struct AskedKeys {
     std::mutex mutex;
     std::set<std::string> keys;

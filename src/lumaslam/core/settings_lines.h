@@ -1,0 +1,21 @@
+#pragma once
+// Where each key of a YAML settings text is set, found by a light line scan beside
+// cv::FileStorage, which keeps one of two equal keys without a word and stores integers in
+// 32 bits. Block maps only: keys inside flow collections ({a: 1}) and sequences are not seen.
+#include <map>
+#include <string>
+#include <string_view>
+
+namespace lumaslam::core {
+
+struct KeyLine {
+  int line = 0;       // 1-based, in `text`
+  std::string value;  // as written, without a trailing comment; empty for a map's key
+};
+
+// Keys in flat form: nested block maps are joined with '.', so `Camera.fx: 1` and
+// `Camera:\n  fx: 1` are the same key. Throws Error "ORIGIN: key 'K' is set twice: lines A and
+// B" when a key is set twice.
+std::map<std::string, KeyLine> scanKeyLines(std::string_view text, const std::string& origin);
+
+}  // namespace lumaslam::core
