@@ -109,6 +109,14 @@ TEST(CliEval, MissingOrBadInputFailsWithAMessageNamingIt) {
   EXPECT_NE(no_overlap.output.find("no estimate pose is within"), std::string::npos)
       << no_overlap.output;
 
+  // A window wide enough to pair them anyway: poses are matched, the coverage says 0 %.
+  const auto json_path = dir.path() / "late.json";
+  const RunResult wide = runCli("eval " + late_path.string() + " " + gt_path.string() +
+                                " --max-dt 1e9 --json " + json_path.string());
+  ASSERT_EQ(wide.exit_code, 0) << wide.output;
+  EXPECT_NE(wide.output.find("coverage 0.0%"), std::string::npos) << wide.output;
+  EXPECT_DOUBLE_EQ(readJson(json_path)["ate"]["coverage"].get<double>(), 0.0);
+
   const RunResult bad_mode =
       runCli("eval " + gt_path.string() + " " + gt_path.string() + " --align affine");
   EXPECT_NE(bad_mode.exit_code, 0);

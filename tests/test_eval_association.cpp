@@ -111,5 +111,23 @@ TEST(Association, BadInputsGiveClearErrors) {
   EXPECT_THROW(associate(ground_truth, ground_truth, NAN), Error);
 }
 
+TEST(Association, HugeMaxDtDoesNotMakeDisjointSpansCovered) {
+  // Ground truth 1000..1002.45 s, the estimate 9000..9002.45 s: with max_dt 1e9 every pose
+  // finds a partner, but the estimate ran beside none of the ground truth.
+  const Trajectory ground_truth = test::helix(50);
+  const Trajectory estimate = test::helix(50, 0.05, 9000.0);
+  const AssociatedTrajectories matched = associate(estimate, ground_truth, 1e9);
+  EXPECT_EQ(matched.size(), 50u);
+  EXPECT_EQ(matched.ground_truth_in_span, 0u);
+  EXPECT_DOUBLE_EQ(matched.coverage(), 0.0);
+
+  // The first half of the estimate runs beside the last half of the ground truth (stamps
+  // half an interval apart): those 25 ground-truth poses are in its span, and covered.
+  const Trajectory half = test::helix(50, 0.05, 1000.0 + 25.5 * 0.05);
+  const AssociatedTrajectories overlap = associate(half, ground_truth, 1e9);
+  EXPECT_EQ(overlap.ground_truth_in_span, 25u);
+  EXPECT_DOUBLE_EQ(overlap.coverage(), 1.0);
+}
+
 }  // namespace
 }  // namespace lumaslam::eval

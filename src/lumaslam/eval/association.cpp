@@ -26,11 +26,21 @@ struct Candidate {
   std::size_t ground_truth_index;
 };
 
+double medianInterval(const std::vector<double>& sorted_stamps) {
+  if (sorted_stamps.size() < 2) return 0.0;
+  std::vector<double> intervals(sorted_stamps.size() - 1);
+  for (std::size_t k = 0; k + 1 < sorted_stamps.size(); ++k) {
+    intervals[k] = sorted_stamps[k + 1] - sorted_stamps[k];
+  }
+  std::nth_element(intervals.begin(), intervals.begin() + intervals.size() / 2, intervals.end());
+  return intervals[intervals.size() / 2];
+}
+
 }  // namespace
 
 double AssociatedTrajectories::coverage() const {
   if (ground_truth_in_span == 0) return 0.0;
-  return static_cast<double>(size()) / static_cast<double>(ground_truth_in_span);
+  return static_cast<double>(matched_in_span) / static_cast<double>(ground_truth_in_span);
 }
 
 AssociatedTrajectories associate(const Trajectory& estimate, const Trajectory& ground_truth,
@@ -91,11 +101,18 @@ AssociatedTrajectories associate(const Trajectory& estimate, const Trajectory& g
     result.estimate_indices.push_back(i);
     result.ground_truth_indices.push_back(j);
   }
-  const auto span_begin =
-      std::lower_bound(gt_stamps.begin(), gt_stamps.end(), est_min->timestamp - max_dt);
-  const auto span_end =
-      std::upper_bound(gt_stamps.begin(), gt_stamps.end(), est_max->timestamp + max_dt);
+  // The span is widened by max_dt for stamp offsets, but by no more than one ground-truth
+  // interval: a large max_dt must not count ground truth from before or after the estimate.
+  const double widen = std::min(max_dt, medianInterval(gt_stamps));
+  const double span_first = est_min->timestamp - widen;
+  const double span_last = est_max->timestamp + widen;
+  const auto span_begin = std::lower_bound(gt_stamps.begin(), gt_stamps.end(), span_first);
+  const auto span_end = std::upper_bound(gt_stamps.begin(), gt_stamps.end(), span_last);
   result.ground_truth_in_span = static_cast<std::size_t>(span_end - span_begin);
+  result.matched_in_span = static_cast<std::size_t>(std::count_if(
+      result.ground_truth.begin(), result.ground_truth.end(), [&](const StampedPose& pose) {
+        return pose.timestamp >= span_first && pose.timestamp <= span_last;
+      }));
   return result;
 }
 

@@ -14,11 +14,14 @@ struct AssociatedTrajectories {
   Trajectory ground_truth;                    // the ground-truth pose matched to each, same order
   std::vector<std::size_t> estimate_indices;  // index of each match in the input estimate
   std::vector<std::size_t> ground_truth_indices;  // index of each match in the input GT
-  // Ground-truth poses inside the estimate's time span (widened by max_dt on both sides).
+  // Ground-truth poses inside the estimate's time span, widened on both sides by max_dt but
+  // by at most the ground truth's median interval (a huge max_dt must not widen it to all).
   std::size_t ground_truth_in_span = 0;
+  std::size_t matched_in_span = 0;  // matches whose ground-truth pose is inside that span
 
   std::size_t size() const { return estimate.size(); }
-  // matched / ground_truth_in_span: the share of ground-truth frames the estimate covers.
+  // matched_in_span / ground_truth_in_span: the share of ground-truth frames the estimate
+  // covers; 0 when the two trajectories do not overlap in time.
   double coverage() const;
 };
 
