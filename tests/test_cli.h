@@ -19,8 +19,9 @@ struct CliResult {
   std::string output;
 };
 
-inline CliResult runCli(const std::string& arguments) {
-  const std::string command = cliPath().string() + " " + arguments + " 2>&1";
+// `shell_setup` runs first in the same shell, e.g. "ulimit -f 1; ".
+inline CliResult runCli(const std::string& arguments, const std::string& shell_setup = "") {
+  const std::string command = shell_setup + cliPath().string() + " " + arguments + " 2>&1";
   CliResult result;
   FILE* pipe = popen(command.c_str(), "r");
   if (!pipe) return result;

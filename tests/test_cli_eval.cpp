@@ -3,7 +3,9 @@
 
 #include <array>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <string>
 
 #include <nlohmann/json.hpp>
@@ -88,6 +90,25 @@ TEST(CliEval, ReadsGroundTruthFromADatasetSpec) {
   const RunResult full =
       runCli("eval " + est_path.string() + " kitti:" + sequence.string() + " > /dev/full");
   EXPECT_NE(full.exit_code, 0);
+}
+
+TEST(CliEval, AFailedPlotWriteLeavesTheEarlierFileUntouched) {
+  test::TempDir dir("cli_eval_write");
+  const auto gt_path = dir.path() / "gt.txt";
+  io::writeTrajectory(gt_path, test::helix(300), io::TrajectoryFormat::Tum);
+  const auto plot_path = dir.path() / "plot.svg";
+  std::ofstream(plot_path) << "earlier plot\n";
+
+  // Files limited to 1 block, SIGXFSZ ignored: writing the plot fails with EFBIG.
+  const RunResult run =
+      runCli("eval " + gt_path.string() + " " + gt_path.string() + " --plot " + plot_path.string(),
+             "trap '' XFSZ; ulimit -f 1; ");
+  EXPECT_NE(run.exit_code, 0) << run.output;
+  EXPECT_NE(run.output.find(plot_path.string()), std::string::npos) << run.output;
+  std::ifstream plot(plot_path);
+  std::string content((std::istreambuf_iterator<char>(plot)), std::istreambuf_iterator<char>());
+  EXPECT_EQ(content, "earlier plot\n");
+  EXPECT_FALSE(std::filesystem::exists(dir.path() / "plot.svg.partial"));
 }
 
 TEST(CliEval, MissingOrBadInputFailsWithAMessageNamingIt) {

@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <fstream>
 #include <regex>
 #include <sstream>
@@ -80,7 +81,10 @@ TEST(TrajectoryPlot, DrawsBothPanelsWithLabelsAndBreaksAtTrackingGaps) {
   std::stringstream written;
   written << file.rdbuf();
   EXPECT_EQ(written.str(), svg);
-  EXPECT_THROW(writeEvaluationPlot(dir.path() / "no_such_dir" / "plot.svg", report), Error);
+  // Written as an io::OutputFile: missing folders are created, a file in the way is an Error.
+  writeEvaluationPlot(dir.path() / "new_dir" / "plot.svg", report);
+  EXPECT_TRUE(std::filesystem::is_regular_file(dir.path() / "new_dir" / "plot.svg"));
+  EXPECT_THROW(writeEvaluationPlot(path / "plot.svg", report), Error);
 }
 
 }  // namespace

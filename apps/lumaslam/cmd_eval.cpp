@@ -2,7 +2,6 @@
 // definitions of the evo tool (see docs/evaluation.md).
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <memory>
 #include <string>
 
@@ -15,6 +14,7 @@
 #include "lumaslam/eval/evaluation.h"
 #include "lumaslam/eval/trajectory_plot.h"
 #include "lumaslam/io/dataset_reader.h"
+#include "lumaslam/io/output_file.h"
 #include "lumaslam/io/trajectory_io.h"
 
 namespace {
@@ -36,10 +36,9 @@ struct EvalOptions {
 };
 
 void writeJson(const std::filesystem::path& path, const nlohmann::json& json) {
-  std::ofstream file(path);
-  if (!file) fail("{}: cannot open the JSON file for writing", path.string());
-  file << json.dump(2) << '\n';
-  if (!file.flush()) fail("{}: failed writing the JSON file", path.string());
+  io::OutputFile file(path);
+  file.stream() << json.dump(2) << '\n';
+  file.commit();
 }
 
 int runEval(const EvalOptions& options) {

@@ -1,10 +1,9 @@
 #include "lumaslam/eval/svg_document.h"
 
-#include <fstream>
-
 #include <spdlog/fmt/fmt.h>
 
 #include "lumaslam/core/error.h"
+#include "lumaslam/io/output_file.h"
 
 namespace lumaslam::eval {
 
@@ -100,10 +99,9 @@ std::string SvgDocument::str() const {
 }
 
 void SvgDocument::save(const std::filesystem::path& path) const {
-  std::ofstream file(path, std::ios::binary);
-  if (!file) fail("{}: cannot open the SVG file for writing", path.string());
-  file << str();
-  if (!file.flush()) fail("{}: failed writing the SVG file", path.string());
+  io::OutputFile file(path);
+  file.stream() << str();
+  file.commit();
 }
 
 }  // namespace lumaslam::eval

@@ -41,7 +41,8 @@ class SvgDocument {
             std::string_view fill = "black");
 
   std::string str() const;
-  // Throws Error naming the path when it cannot be written.
+  // Written as an io::OutputFile (complete or not at all); throws Error naming the path when
+  // it cannot be written.
   void save(const std::filesystem::path& path) const;
 
  private:
