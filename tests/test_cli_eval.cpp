@@ -138,6 +138,14 @@ TEST(CliEval, MissingOrBadInputFailsWithAMessageNamingIt) {
   EXPECT_NE(wide.output.find("coverage 0.0%"), std::string::npos) << wide.output;
   EXPECT_DOUBLE_EQ(readJson(json_path)["ate"]["coverage"].get<double>(), 0.0);
 
+  // A very long file name is shortened in the message, not echoed whole (issue 20).
+  const std::string long_name = dir.path().string() + "/" + std::string(100000, 'n') + ".txt";
+  const RunResult long_run = runCli("eval " + long_name + " " + gt_path.string());
+  EXPECT_NE(long_run.exit_code, 0);
+  EXPECT_NE(long_run.output.find(long_name.substr(0, 200) + "..."), std::string::npos)
+      << long_run.output.substr(0, 1000);
+  EXPECT_LT(long_run.output.size(), 2000u) << long_run.output.substr(0, 1000);
+
   const RunResult bad_mode =
       runCli("eval " + gt_path.string() + " " + gt_path.string() + " --align affine");
   EXPECT_NE(bad_mode.exit_code, 0);

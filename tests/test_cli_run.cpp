@@ -96,12 +96,28 @@ TEST(CliRun, MissingSettingsOrDatasetIsAClearError) {
   EXPECT_NE(bad_settings.output.find("absent.yaml"), std::string::npos) << bad_settings.output;
 
   // Out-of-range counts are refused by name (issue 20), not wrapped around or run forever.
-  for (const char* value : {"-1", "1e20"}) {
+  for (const std::string value : {"-1", "1e20", "2.5"}) {
     const auto frames =
-        runCli("run --dataset tum:" + dir.path().string() + " --max-frames " + std::string(value));
+        runCli("run --dataset tum:" + dir.path().string() + " --max-frames " + value);
     EXPECT_NE(frames.exit_code, 0) << value;
-    EXPECT_NE(frames.output.find("--max-frames"), std::string::npos) << frames.output;
+    EXPECT_NE(frames.output.find("--max-frames: expected a whole number from 0 to 1000000000, "
+                                 "found '" +
+                                 value + "'"),
+              std::string::npos)
+        << frames.output;
   }
+  const auto repeat = runCli("run --dataset tum:" + dir.path().string() + " --repeat 0");
+  EXPECT_NE(repeat.exit_code, 0);
+  EXPECT_NE(repeat.output.find("--repeat: expected a whole number from 1 to 1000, found '0'"),
+            std::string::npos)
+      << repeat.output;
+
+  // An unknown dataset kind is the problem to report, not the settings file it would imply.
+  const auto scheme = runCli("run --dataset foo:/x --out " + (dir.path() / "out").string());
+  EXPECT_NE(scheme.exit_code, 0);
+  EXPECT_NE(scheme.output.find("dataset 'foo:/x': expected KIND:PATH"), std::string::npos)
+      << scheme.output;
+  EXPECT_EQ(scheme.output.find("settings"), std::string::npos) << scheme.output;
 }
 
 }  // namespace

@@ -17,6 +17,7 @@
 #include <opencv2/imgproc.hpp>
 #include <opencv2/videoio.hpp>
 
+#include "cli_checks.h"
 #include "command_registry.h"
 #include "lumaslam/core/error.h"
 #include "lumaslam/core/settings_file.h"
@@ -308,7 +309,8 @@ const bool registered = lumaslam::cli::registerCommand(
       cmd.add_option("--threads", options->threads, "OpenCV threads (cv::setNumThreads)");
       cmd.add_option("--stride", options->stride,
                      "video: detect every k-th frame, propagate between");
-      cmd.add_option("--max-frames", options->max_frames, "video: stop after this many frames");
+      cmd.add_option("--max-frames", options->max_frames, "video: stop after this many frames")
+          ->check(lumaslam::cli::wholeNumber(0, 1'000'000'000));
       cmd.add_option("--output", options->output_dir, "write annotated images into this folder");
       cmd.add_option("--evaluate", options->evaluate,
                      "box-list file or folder of VOC .xml: print recall/precision");

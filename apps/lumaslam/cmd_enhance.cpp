@@ -14,6 +14,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "cli_checks.h"
 #include "command_registry.h"
 #include "image_inputs.h"
 #include "lumaslam/core/error.h"
@@ -301,7 +302,8 @@ const bool registered = registerCommand(
                      "Stereo matches per frame of this stereo dataset, pair enhanced "
                      "independently or with one shared plan");
       cmd.add_option("--extra", options->extra, "Settings files scored as extra candidates");
-      cmd.add_option("--max-frames", options->max_frames, "Use at most this many frames");
+      cmd.add_option("--max-frames", options->max_frames, "Use at most this many frames")
+          ->check(lumaslam::cli::wholeNumber(0, 1'000'000'000));
       cmd.add_option("--stride", options->stride, "Use every Nth frame");
       return [options] { return run(*options); };
     });

@@ -1,5 +1,6 @@
 #include <memory>
 
+#include "cli_checks.h"
 #include "command_registry.h"
 #include "lumaslam/core/error.h"
 #include "run_pipeline.h"
@@ -32,7 +33,7 @@ const bool registered = registerCommand(
                      "(e.g. a synthetic dataset's detections.txt) or none");
       cmd.add_option("--out", options->out, "Output folder")->capture_default_str();
       cmd.add_option("--max-frames", *max_frames, "Stop after this many frames (0: all)")
-          ->check(CLI::Range(0.0, 1.0e9));
+          ->check(wholeNumber(0, 1'000'000'000));
       cmd.add_flag("--sequential", options->sequential,
                    "Run local mapping in the caller's thread (deterministic)");
       cmd.add_option("--vocabulary", *vocabulary,
@@ -63,7 +64,7 @@ const bool registered = registerCommand(
                      "results");
       cmd.add_option("--repeat", *repeats,
                      "Run N times into OUT/run_K and report the min/median/max spread")
-          ->check(CLI::Range(1, 1000));
+          ->check(wholeNumber(1, 1000));
       return [options, max_frames, enhance, detector, repeats, vocabulary, on_bad_frame] {
         options->on_bad_frame =
             *on_bad_frame == "stop" ? RunOptions::BadFrame::Stop : RunOptions::BadFrame::Skip;

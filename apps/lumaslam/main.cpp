@@ -7,6 +7,7 @@
 #include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
 
+#include "cli_checks.h"
 #include "command_registry.h"
 #ifdef LUMASLAM_SERIAL_LIBRARIES
 #include "lumaslam/core/serial_libraries.h"
@@ -74,7 +75,8 @@ int main(int argc, char** argv) {
       }
       return code;
     } catch (const std::exception& e) {
-      std::fprintf(stderr, "lumaslam %s: error: %s\n", entry.first.c_str(), e.what());
+      std::fprintf(stderr, "lumaslam %s: error: %s\n", entry.first.c_str(),
+                   shortenLongWords(e.what()).c_str());
       return 1;
     }
   }

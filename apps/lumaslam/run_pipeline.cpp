@@ -24,11 +24,6 @@
 namespace lumaslam::cli {
 namespace {
 
-std::filesystem::path datasetPath(const std::string& spec) {
-  const auto colon = spec.find(':');
-  return colon == std::string::npos ? spec : spec.substr(colon + 1);
-}
-
 double median(std::vector<double> values) {
   if (values.empty()) return 0.0;
   std::nth_element(values.begin(), values.begin() + values.size() / 2, values.end());
@@ -216,8 +211,8 @@ nlohmann::json mapFileSummary(const RunOptions& options, const Pipeline& system,
       {"loaded", path_or_null(options.load_map)},
       {"loaded_keyframes", loaded_keyframes},
       {"localization", options.localization},
-      {"keyframes_added", static_cast<long long>(system.keyFrameCount()) -
-                              static_cast<long long>(loaded_keyframes)},
+      {"keyframes_added",
+       static_cast<long long>(system.keyFrameCount()) - static_cast<long long>(loaded_keyframes)},
       {"saved", save_error.empty() ? path_or_null(options.save_map) : nlohmann::json(nullptr)}};
   if (!save_error.empty()) result["save_error"] = save_error;
   return result;
@@ -261,7 +256,8 @@ void removeEarlierOutputs(const std::filesystem::path& out) {
 
 int runPipeline(const RunOptions& options) {
   auto settings_path = options.settings;
-  if (settings_path.empty()) settings_path = datasetPath(options.dataset) / "settings.yaml";
+  // An unknown dataset KIND is reported before the settings file it would point to.
+  if (settings_path.empty()) settings_path = io::datasetPathOf(options.dataset) / "settings.yaml";
   const auto settings = io::loadSettings(settings_path);
   io::ReaderOptions reader_options;
   reader_options.max_frames = options.max_frames;

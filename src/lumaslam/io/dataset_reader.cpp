@@ -33,16 +33,25 @@ std::optional<DatasetSpec> splitSpec(const std::string& spec) {
   return DatasetSpec{kind, spec.substr(colon + 1)};
 }
 
-DatasetSpec parseSpec(const std::string& spec) {
+DatasetSpec requireKnownKind(const std::string& spec) {
   auto parsed = splitSpec(spec);
   if (!parsed) fail("dataset '{}': expected KIND:PATH with KIND one of {}", spec, kKindList);
-  if (parsed->path.empty()) fail("dataset '{}': the path after '{}:' is empty", spec, parsed->kind);
-  std::error_code ec;
-  if (!std::filesystem::exists(parsed->path, ec))
-    fail("{}: dataset path not found (from '{}')", parsed->path.string(), spec);
   return *parsed;
 }
+
+DatasetSpec parseSpec(const std::string& spec) {
+  DatasetSpec parsed = requireKnownKind(spec);
+  if (parsed.path.empty()) fail("dataset '{}': the path after '{}:' is empty", spec, parsed.kind);
+  std::error_code ec;
+  if (!std::filesystem::exists(parsed.path, ec))
+    fail("{}: dataset path not found (from '{}')", parsed.path.string(), spec);
+  return parsed;
+}
 }  // namespace
+
+std::filesystem::path datasetPathOf(const std::string& spec) {
+  return requireKnownKind(spec).path;
+}
 
 std::unique_ptr<DatasetReader> openDataset(const std::string& spec, const ReaderOptions& options) {
   const auto [kind, path] = parseSpec(spec);

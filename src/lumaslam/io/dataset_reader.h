@@ -86,6 +86,9 @@ class DatasetReader {
 std::unique_ptr<DatasetReader> openDataset(const std::string& spec,
                                            const ReaderOptions& options = {});
 
+// The PATH of a spec as above, unchecked; throws Error for an unknown (or no) KIND.
+std::filesystem::path datasetPathOf(const std::string& spec);
+
 // Ground truth of a dataset spec as above (camera poses), or of a plain trajectory file
 // (TUM/EuRoC csv/KITTI, detected by content). Throws Error if there is none.
 Trajectory loadGroundTruth(const std::string& spec);
