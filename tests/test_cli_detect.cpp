@@ -61,6 +61,13 @@ TEST(CliDetect, BadModelOrInputIsOneClearError) {
                (dir.path() / "absent.jpg").string());
   EXPECT_EQ(run.exit_code, 1);
   EXPECT_NE(run.output.find("absent.jpg"), std::string::npos) << run.output;
+
+  run = runCli("detect --model " + garbage.string() + " " + image.string() + " --max-frames 1e20");
+  EXPECT_NE(run.exit_code, 0);
+  EXPECT_NE(run.output.find("--max-frames: expected a whole number from 0 to 1000000000, "
+                            "found '1e20'"),
+            std::string::npos)
+      << run.output;
 }
 
 }  // namespace

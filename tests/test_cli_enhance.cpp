@@ -60,6 +60,14 @@ TEST(CliEnhance, MissingAndCorruptInputsNameTheFile) {
   const RunResult bad = runCli("enhance " + corrupt.string());
   EXPECT_EQ(bad.exit_code, 1);
   EXPECT_NE(bad.output.find("corrupt.png"), std::string::npos) << bad.output;
+
+  // -1 is not "all frames" (issue 20).
+  const RunResult negative = runCli("enhance " + corrupt.string() + " --max-frames -1");
+  EXPECT_NE(negative.exit_code, 0);
+  EXPECT_NE(negative.output.find("--max-frames: expected a whole number from 0 to 1000000000, "
+                                 "found '-1'"),
+            std::string::npos)
+      << negative.output;
 }
 
 TEST(CliEnhance, CalibrateWritesSettingsThatReadBack) {

@@ -145,6 +145,13 @@ TEST(CliEval, MissingOrBadInputFailsWithAMessageNamingIt) {
   EXPECT_NE(long_run.output.find(long_name.substr(0, 200) + "..."), std::string::npos)
       << long_run.output.substr(0, 1000);
   EXPECT_LT(long_run.output.size(), 2000u) << long_run.output.substr(0, 1000);
+  // The same for a bad option value, which CLI11 reports.
+  const RunResult long_option = runCli("eval " + gt_path.string() + " " + gt_path.string() +
+                                       " --align " + std::string(100000, 'a'));
+  EXPECT_NE(long_option.exit_code, 0);
+  EXPECT_NE(long_option.output.find(std::string(200, 'a') + "..."), std::string::npos)
+      << long_option.output.substr(0, 1000);
+  EXPECT_LT(long_option.output.size(), 2000u) << long_option.output.substr(0, 1000);
 
   const RunResult bad_mode =
       runCli("eval " + gt_path.string() + " " + gt_path.string() + " --align affine");

@@ -1,6 +1,8 @@
 #include <algorithm>
 #include <exception>
+#include <iostream>
 #include <map>
+#include <sstream>
 
 #include <cstdio>
 
@@ -56,7 +58,10 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);
+    std::ostringstream errors;  // an option's value may be a 1 MB word: shortened
+    const int code = app.exit(e, std::cout, errors);
+    std::fputs(shortenLongWords(errors.str()).c_str(), stderr);
+    return code;
   }
   // Logs go to stderr so that stdout carries only results (tables, JSON).
   spdlog::set_default_logger(spdlog::stderr_color_mt("lumaslam"));
