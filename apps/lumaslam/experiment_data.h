@@ -1,0 +1,13 @@
+#pragma once
+// The synthetic datasets of an experiment plan, generated once into DIR/data/ with the code
+// `lumaslam synth` uses and reused when a complete one is already there.
+#include <filesystem>
+
+#include "experiment_plan.h"
+
+namespace lumaslam::cli {
+
+// Generates what is missing and points each synth dataset's spec at its folder.
+void prepareSynthData(Plan& plan, const std::filesystem::path& data_dir);
+
+}  // namespace lumaslam::cli

@@ -1,0 +1,249 @@
+#include "experiment_plan.h"
+
+#include <algorithm>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#include <fmt/format.h>
+#include <opencv2/core.hpp>
+
+#include "lumaslam/core/error.h"
+#include "lumaslam/synth/preset.h"
+
+namespace lumaslam::cli {
+namespace {
+
+// One map of the plan and the key path that names it in errors ("datasets[1]").
+struct Section {
+  const Plan& plan;
+  cv::FileNode node;
+  std::string path;
+
+  std::string key(const std::string& name) const { return path.empty() ? name : path + "." + name; }
+  [[noreturn]] void invalid(const std::string& name, const std::string& why) const {
+    fail("{}: {}: {}", plan.file.string(), key(name), why);
+  }
+  cv::FileNode operator[](const std::string& name) const { return node[name]; }
+};
+
+cv::FileStorage openPlan(const std::filesystem::path& file) {
+  std::ifstream in(file);
+  if (!in) fail("{}: plan file not found", file.string());
+  std::stringstream text;
+  text << in.rdbuf();
+  std::string yaml = text.str();
+  // cv::FileStorage needs the header that hand-written files usually leave out.
+  if (!yaml.starts_with("%YAML")) yaml = "%YAML:1.0\n" + yaml;
+  cv::FileStorage storage;
+  try {
+    storage.open(yaml, cv::FileStorage::READ | cv::FileStorage::MEMORY);
+  } catch (const cv::Exception& e) {
+    fail("{}: not a valid YAML plan: {}", file.string(), e.err);
+  }
+  if (!storage.isOpened()) fail("{}: not a valid YAML plan", file.string());
+  return storage;
+}
+
+void requireKnownKeys(const Section& s, const std::vector<std::string>& known) {
+  if (!s.node.isMap()) fail("{}: {}: expected a map of keys", s.plan.file.string(), s.path);
+  for (const auto& name : s.node.keys()) {
+    if (std::find(known.begin(), known.end(), name) == known.end()) {
+      s.invalid(name, fmt::format("unknown key (known: {})", fmt::join(known, ", ")));
+    }
+  }
+}
+
+std::optional<std::string> findString(const Section& s, const std::string& name) {
+  const cv::FileNode n = s[name];
+  if (n.empty()) return std::nullopt;
+  if (n.isString()) return static_cast<std::string>(n);
+  if (n.isInt()) return std::to_string(static_cast<int>(n));
+  s.invalid(name, "expected a string");
+}
+
+std::string requiredString(const Section& s, const std::string& name) {
+  auto value = findString(s, name);
+  if (!value || value->empty()) s.invalid(name, "missing (expected a string)");
+  return *value;
+}
+
+std::optional<int> findInt(const Section& s, const std::string& name, int min) {
+  const cv::FileNode n = s[name];
+  if (n.empty()) return std::nullopt;
+  if (!n.isInt() || static_cast<int>(n) < min) {
+    s.invalid(name, fmt::format("expected an integer >= {}", min));
+  }
+  return static_cast<int>(n);
+}
+
+bool boolOr(const Section& s, const std::string& name, bool fallback) {
+  const cv::FileNode n = s[name];
+  if (n.empty()) return fallback;
+  if (n.isInt() && (static_cast<int>(n) == 0 || static_cast<int>(n) == 1)) {
+    return static_cast<int>(n) == 1;
+  }
+  const std::string text = n.isString() ? static_cast<std::string>(n) : std::string();
+  if (text == "true" || text == "on") return true;
+  if (text == "false" || text == "off") return false;
+  s.invalid(name, "expected true or false");
+}
+
+std::vector<int> seedsOf(const Section& s) {
+  const cv::FileNode n = s["seeds"];
+  if (n.empty()) return {1};
+  if (n.isInt() && static_cast<int>(n) >= 0) return {static_cast<int>(n)};
+  if (!n.isSeq()) s.invalid("seeds", "expected a list of non-negative integers");
+  std::vector<int> seeds;
+  for (const auto& item : n) {
+    if (!item.isInt() || static_cast<int>(item) < 0) {
+      s.invalid("seeds", "expected a list of non-negative integers");
+    }
+    seeds.push_back(static_cast<int>(item));
+  }
+  if (seeds.empty()) s.invalid("seeds", "empty list");
+  return seeds;
+}
+
+// Names become folder names: nothing that could leave DIR/runs/.
+void requireFolderName(const Section& s, const std::string& key, const std::string& name) {
+  const bool safe = std::all_of(name.begin(), name.end(), [](char c) {
+    return std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_' || c == '.';
+  });
+  if (name.empty() || !safe || name == "." || name == "..") {
+    s.invalid(key, fmt::format("'{}' is not a folder name (letters, digits, '-', '_', '.')", name));
+  }
+}
+
+std::filesystem::path fromPlanFolder(const Plan& plan, const std::filesystem::path& path) {
+  return path.is_absolute() ? path : plan.file.parent_path() / path;
+}
+
+// "tum:rel/path" -> "tum:PLAN_FOLDER/rel/path"; the path must exist.
+std::string resolveSpec(const Section& s, const std::string& spec) {
+  const auto colon = spec.find(':');
+  if (colon == std::string::npos) s.invalid("spec", fmt::format("'{}' is not KIND:PATH", spec));
+  const auto path = fromPlanFolder(s.plan, spec.substr(colon + 1));
+  if (!std::filesystem::exists(path)) {
+    s.invalid("spec", fmt::format("'{}': {} not found", spec, path.string()));
+  }
+  return spec.substr(0, colon + 1) + path.string();
+}
+
+std::string defaultName(const std::string& spec) {
+  auto name = std::filesystem::path(spec.substr(spec.find(':') + 1)).filename().string();
+  if (name.empty()) name = std::filesystem::path(spec).parent_path().filename().string();
+  return name;
+}
+
+void readSynthDatasets(const Section& s, const std::string& preset_name,
+                       std::vector<PlanDataset>& out) {
+  const synth::Preset* preset = nullptr;
+  try {
+    preset = &synth::findPreset(preset_name);
+  } catch (const Error& e) {
+    s.invalid("spec", e.what());
+  }
+  const int frames = findInt(s, "frames", 1).value_or(preset->frames);
+  const std::string base = findString(s, "name").value_or(preset_name);
+  for (const int seed : seedsOf(s)) {
+    PlanDataset d;
+    d.name = fmt::format("{}-s{}", base, seed);
+    requireFolderName(s, "name", d.name);
+    d.synth = PlanDataset::Synth{preset_name, static_cast<std::uint64_t>(seed), frames,
+                                 fmt::format("{}-s{}-f{}", preset_name, seed, frames),
+                                 preset->sensor == synth::SensorKind::Stereo};
+    out.push_back(std::move(d));
+  }
+}
+
+// cv::FileStorage reads an unquoted `spec: tum:/data/x` as the map {tum: /data/x}.
+std::string specOf(const Section& s) {
+  const cv::FileNode n = s["spec"];
+  if (n.isMap() && n.size() == 1 && n[n.keys().front()].isString()) {
+    return n.keys().front() + ":" + static_cast<std::string>(n[n.keys().front()]);
+  }
+  return requiredString(s, "spec");
+}
+
+void readDataset(const Section& s, std::vector<PlanDataset>& out) {
+  requireKnownKeys(s, {"name", "spec", "settings", "seeds", "frames"});
+  const std::string spec = specOf(s);
+  if (spec.starts_with("synth:")) {
+    if (!s["settings"].empty()) s.invalid("settings", "synth datasets bring their own");
+    readSynthDatasets(s, spec.substr(6), out);
+    return;
+  }
+  if (!s["seeds"].empty()) s.invalid("seeds", "only synth: datasets have seeds");
+  PlanDataset d;
+  d.spec = resolveSpec(s, spec);
+  d.name = findString(s, "name").value_or(defaultName(spec));
+  requireFolderName(s, "name", d.name);
+  if (const auto settings = findString(s, "settings")) {
+    d.settings = fromPlanFolder(s.plan, *settings);
+    if (!std::filesystem::is_regular_file(d.settings)) {
+      s.invalid("settings", fmt::format("{} not found", d.settings.string()));
+    }
+  }
+  if (const auto frames = findInt(s, "frames", 1)) d.max_frames = *frames;
+  out.push_back(std::move(d));
+}
+
+PlanConfig readConfig(const Section& s) {
+  requireKnownKeys(s, {"name", "enhance", "detector", "vocabulary", "sequential", "loop_closing",
+                       "motion_evidence"});
+  PlanConfig c;
+  c.name = requiredString(s, "name");
+  requireFolderName(s, "name", c.name);
+  c.enhance = findString(s, "enhance");
+  c.detector = findString(s, "detector");
+  if (const auto vocabulary = findString(s, "vocabulary")) {
+    c.vocabulary = *vocabulary == "none" ? std::filesystem::path(*vocabulary)
+                                         : fromPlanFolder(s.plan, *vocabulary);
+  }
+  c.sequential = boolOr(s, "sequential", false);
+  c.loop_closing = boolOr(s, "loop_closing", true);
+  c.motion_evidence = boolOr(s, "motion_evidence", true);
+  return c;
+}
+
+cv::FileNode requiredList(const Section& top, const std::string& name) {
+  const cv::FileNode n = top[name];
+  if (n.empty()) top.invalid(name, "missing (expected a list)");
+  if (!n.isSeq() || n.size() == 0) top.invalid(name, "expected a non-empty list");
+  return n;
+}
+
+template <typename T>
+void requireUniqueNames(const Plan& plan, const std::vector<T>& items, const char* list) {
+  std::set<std::string> seen;
+  for (const auto& item : items) {
+    if (!seen.insert(item.name).second) {
+      fail("{}: {}: the name '{}' is used twice", plan.file.string(), list, item.name);
+    }
+  }
+}
+
+}  // namespace
+
+Plan readPlan(const std::filesystem::path& file) {
+  Plan plan;
+  plan.file = file;
+  const cv::FileStorage storage = openPlan(file);
+  const Section top{plan, storage.root(), ""};
+  requireKnownKeys(top, {"runs", "datasets", "configurations"});
+  plan.runs = findInt(top, "runs", 1).value_or(1);
+  const cv::FileNode datasets = requiredList(top, "datasets");
+  for (int i = 0; i < static_cast<int>(datasets.size()); ++i) {
+    readDataset({plan, datasets[i], fmt::format("datasets[{}]", i)}, plan.datasets);
+  }
+  const cv::FileNode configs = requiredList(top, "configurations");
+  for (int i = 0; i < static_cast<int>(configs.size()); ++i) {
+    plan.configs.push_back(readConfig({plan, configs[i], fmt::format("configurations[{}]", i)}));
+  }
+  requireUniqueNames(plan, plan.datasets, "datasets");
+  requireUniqueNames(plan, plan.configs, "configurations");
+  return plan;
+}
+
+}  // namespace lumaslam::cli

@@ -1,0 +1,50 @@
+#pragma once
+// The plan of `lumaslam experiment PLAN.yaml` (docs/experiments.md): datasets, configurations
+// and runs per cell, read with cv::FileStorage. Every unknown key, missing key or wrong value
+// is an Error naming the plan file and the key ("plan.yaml: datasets[1].seeds: ...").
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace lumaslam::cli {
+
+struct PlanDataset {
+  std::string name;                // folder under DIR/runs/
+  std::string spec;                // what `run --dataset` takes; synth: DIR/data/... once made
+  std::filesystem::path settings;  // empty: the dataset's settings.yaml
+  std::optional<std::size_t> max_frames;
+  // synth:PRESET datasets: generated into DIR/data/<folder> before the runs.
+  struct Synth {
+    std::string preset;
+    std::uint64_t seed = 1;
+    int frames = 0;
+    std::string folder;   // under DIR/data/
+    bool stereo = false;  // EuRoC layout (euroc:), else TUM RGB-D (tum:)
+  };
+  std::optional<Synth> synth;
+};
+
+struct PlanConfig {
+  std::string name;  // folder under DIR/runs/<dataset>/
+  std::optional<std::string> enhance;
+  std::optional<std::string> detector;  // "{dataset}" is replaced by the dataset's folder
+  std::optional<std::filesystem::path> vocabulary;
+  bool sequential = false;
+  bool loop_closing = true;
+  bool motion_evidence = true;
+};
+
+struct Plan {
+  std::filesystem::path file;
+  int runs = 1;
+  std::vector<PlanDataset> datasets;  // synth seeds already expanded, one entry each
+  std::vector<PlanConfig> configs;
+};
+
+// Throws Error naming the file and key for anything the plan gets wrong. Relative paths in the
+// plan are taken from the plan file's folder.
+Plan readPlan(const std::filesystem::path& file);
+
+}  // namespace lumaslam::cli

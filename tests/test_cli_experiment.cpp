@@ -1,0 +1,118 @@
+// `lumaslam experiment PLAN --out DIR`: every dataset x configuration x run of a small plan,
+// resuming (a finished experiment does no work, a run without its
+// summary.json is redone alone), and bad plans as errors naming the plan file and key.
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "test_cli.h"
+
+namespace {
+
+using lumaslam::test::readRunSummary;
+using lumaslam::test::runCli;
+using lumaslam::test::TempDir;
+namespace fs = std::filesystem;
+
+// 2 synthetic datasets x 2 configurations x 2 runs, all sequential (deterministic).
+constexpr const char* kPlan = R"(runs: 2
+datasets:
+  - spec: "synth:xyz-rgbd"
+    seeds: [1, 2]
+    frames: 40
+configurations:
+  - name: enhance-off
+    enhance: "off"
+    sequential: true
+  - name: default
+    sequential: true
+)";
+
+fs::path writeFile(const fs::path& path, const std::string& text) {
+  std::ofstream(path) << text;
+  return path;
+}
+
+std::map<fs::path, fs::file_time_type> summaryTimes(const fs::path& runs) {
+  std::map<fs::path, fs::file_time_type> times;
+  for (const auto& entry : fs::recursive_directory_iterator(runs)) {
+    if (entry.path().filename() == "summary.json") times[entry.path()] = entry.last_write_time();
+  }
+  return times;
+}
+
+TEST(CliExperiment, RunsEveryCellAndResumesOnlyUnfinishedRuns) {
+  TempDir dir("cli_experiment");
+  const auto plan = writeFile(dir.path() / "plan.yaml", kPlan);
+  const auto out = dir.path() / "out";
+  const std::string command = "experiment " + plan.string() + " --out " + out.string();
+  const auto first = runCli(command);
+  ASSERT_EQ(first.exit_code, 0) << first.output;
+  EXPECT_TRUE(fs::exists(out / "data" / "xyz-rgbd-s1-f40" / "settings.yaml"));
+  const auto run_folder = out / "runs" / "xyz-rgbd-s2" / "default" / "run_1";
+  for (const char* name : {"trajectory.txt", "keyframes.txt", "timing.csv", "summary.json"}) {
+    EXPECT_TRUE(fs::exists(run_folder / name)) << name;
+  }
+
+  for (const char* dataset : {"xyz-rgbd-s1", "xyz-rgbd-s2"}) {
+    for (const char* config : {"enhance-off", "default"}) {
+      // Sequential runs are deterministic: both runs of a cell give the same ATE.
+      const auto cell = out / "runs" / dataset / config;
+      const auto ate = readRunSummary(cell / "run_1")["evaluation"]["ate"]["rmse"];
+      ASSERT_TRUE(ate.is_number()) << cell;
+      EXPECT_LT(ate.get<double>(), 0.01) << cell;
+      EXPECT_EQ(readRunSummary(cell / "run_2")["evaluation"]["ate"]["rmse"], ate) << cell;
+    }
+  }
+
+  // A finished experiment: no SLAM work, no run folder touched.
+  const auto times = summaryTimes(out / "runs");
+  ASSERT_EQ(times.size(), 8U);
+  const auto again = runCli(command);
+  ASSERT_EQ(again.exit_code, 0) << again.output;
+  EXPECT_NE(again.output.find("no SLAM work to do"), std::string::npos) << again.output;
+  EXPECT_EQ(summaryTimes(out / "runs"), times);
+
+  // A run without its summary.json (as if killed half way) is redone, and only that one.
+  fs::remove(run_folder / "summary.json");
+  const auto resumed = runCli(command);
+  ASSERT_EQ(resumed.exit_code, 0) << resumed.output;
+  EXPECT_NE(resumed.output.find("7 complete from before, 1 to run"), std::string::npos)
+      << resumed.output;
+  const auto after = summaryTimes(out / "runs");
+  ASSERT_EQ(after.size(), 8U);
+  for (const auto& [file, time] : times) {
+    if (file.parent_path() != run_folder) {
+      EXPECT_EQ(after.at(file), time) << file;
+    }
+  }
+}
+
+TEST(CliExperiment, ABadPlanIsAnErrorNamingThePlanFileAndKey) {
+  TempDir dir("cli_experiment_bad");
+  const auto out = (dir.path() / "out").string();
+  const auto expectError = [&](const std::string& name, const std::string& text,
+                               const std::string& key) {
+    const auto plan = writeFile(dir.path() / name, text);
+    const auto result = runCli("experiment " + plan.string() + " --out " + out);
+    EXPECT_NE(result.exit_code, 0) << name;
+    EXPECT_NE(result.output.find(plan.string() + ": " + key), std::string::npos) << result.output;
+  };
+  const std::string configs = "configurations:\n  - name: a\n";
+  expectError("unknown.yaml", "datasets:\n  - spec: \"synth:xyz-rgbd\"\n    seed: 1\n" + configs,
+              "datasets[0].seed: unknown key");
+  expectError("no_datasets.yaml", "runs: 2\n" + configs, "datasets: missing");
+  expectError("missing_folder.yaml",
+              "datasets:\n  - spec: \"tum:" + (dir.path() / "nothing").string() + "\"\n" + configs,
+              "datasets[0].spec");
+  expectError("typo.yaml",
+              "datasets:\n  - spec: \"synth:xyz-rgbd\"\nconfigurations:\n  - name: a\n"
+              "    sequental: true\n",
+              "configurations[0].sequental: unknown key");
+  EXPECT_FALSE(fs::exists(dir.path() / "out" / "runs"));
+}
+
+}  // namespace
