@@ -1,5 +1,5 @@
 // `lumaslam experiment PLAN.yaml --out DIR`: every dataset x configuration x run of a plan
-// into DIR/runs/, resumable (docs/experiments.md).
+// into DIR/runs/, resumable, and the tables of the results (docs/experiments.md).
 #include <cstdio>
 #include <memory>
 
@@ -9,6 +9,7 @@
 #include "experiment_cells.h"
 #include "experiment_data.h"
 #include "experiment_plan.h"
+#include "experiment_results.h"
 #include "lumaslam/io/output_file.h"
 
 namespace lumaslam::cli {
@@ -25,8 +26,10 @@ int runExperiment(const ExperimentOptions& options) {
   prepareSynthData(plan, options.out / "data");
   const auto runs = experimentRuns(plan, options.out / "runs");
   const RunsOutcome outcome = runMissing(runs);
-  std::printf("experiment: %d runs done now, %d kept from before; runs in %s\n", outcome.done,
-              outcome.kept, (options.out / "runs").string().c_str());
+  const auto rows = collectResults(runs, outcome.errors);
+  writeResults(rows, options.out);
+  std::printf("experiment: %d runs done now, %d kept from before; results in %s\n", outcome.done,
+              outcome.kept, (options.out / "results.csv").string().c_str());
   return outcome.exit_code;
 }
 
@@ -37,7 +40,8 @@ const bool registered = registerCommand(
       auto options = std::make_shared<ExperimentOptions>();
       cmd.add_option("PLAN", options->plan, "Experiment plan (YAML, docs/experiments.md)")
           ->required();
-      cmd.add_option("--out", options->out, "Experiment folder: data/ (synthetic datasets), runs/")
+      cmd.add_option("--out", options->out,
+                     "Experiment folder: data/, runs/, results.csv, results.json, summary.csv")
           ->required();
       return [options] { return runExperiment(*options); };
     });
