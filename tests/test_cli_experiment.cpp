@@ -24,8 +24,8 @@ datasets:
     seeds: [1, 2]
     frames: 40
 configurations:
-  - name: enhance-off
-    enhance: "off"
+  - name: enhance-off  # comments end a value, as in YAML: "off", not "off  # ..."
+    enhance: off  # no enhancement: the baseline
     sequential: true
   - name: default
     sequential: true

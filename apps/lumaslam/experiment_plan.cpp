@@ -1,6 +1,7 @@
 #include "experiment_plan.h"
 
 #include <algorithm>
+#include <cctype>
 #include <fstream>
 #include <set>
 #include <sstream>
@@ -27,12 +28,36 @@ struct Section {
   cv::FileNode operator[](const std::string& name) const { return node[name]; }
 };
 
+// cv::FileStorage keeps a comment after an unquoted value as part of it ("off  # no
+// enhancement"), or reads it as a map when the comment holds ": ". YAML ends a value at " #".
+std::string withoutComments(const std::string& yaml) {
+  std::string out;
+  std::istringstream lines(yaml);
+  for (std::string line; std::getline(lines, line);) {
+    char quote = 0;
+    for (std::size_t i = 0; i < line.size(); ++i) {
+      const char c = line[i];
+      if (quote != 0) {
+        if (c == quote) quote = 0;
+      } else if (c == '"' || c == '\'') {
+        quote = c;
+      } else if (c == '#' && (i == 0 || std::isspace(static_cast<unsigned char>(line[i - 1])))) {
+        line.erase(i);
+        break;
+      }
+    }
+    while (!line.empty() && std::isspace(static_cast<unsigned char>(line.back()))) line.pop_back();
+    out += line + '\n';
+  }
+  return out;
+}
+
 cv::FileStorage openPlan(const std::filesystem::path& file) {
   std::ifstream in(file);
   if (!in) fail("{}: plan file not found", file.string());
   std::stringstream text;
   text << in.rdbuf();
-  std::string yaml = text.str();
+  std::string yaml = withoutComments(text.str());
   // cv::FileStorage needs the header that hand-written files usually leave out.
   if (!yaml.starts_with("%YAML")) yaml = "%YAML:1.0\n" + yaml;
   cv::FileStorage storage;
