@@ -99,7 +99,16 @@ TEST(CliExperiment, RunsEveryCellTabulatesAndResumesOnlyUnfinishedRuns) {
     }
   }
   EXPECT_EQ(ate_of_cell.size(), 4U);
-  EXPECT_EQ(readCsv(out / "summary.csv").size(), 4U);
+  const auto cells = readCsv(out / "summary.csv");
+  ASSERT_EQ(cells.size(), 4U);
+  for (const auto& cell : cells) {
+    EXPECT_EQ(cell.at("runs"), "2");
+    EXPECT_EQ(cell.at("complete"), "2");
+    EXPECT_EQ(cell.at("ate_rmse_min"),
+              ate_of_cell.at(cell.at("dataset") + "/" + cell.at("config")));
+    EXPECT_EQ(cell.at("ate_rmse_min"), cell.at("ate_rmse_max"));
+    EXPECT_EQ(cell.at("tracked_min"), cell.at("tracked_median"));
+  }
 
   // A finished experiment: no SLAM work, no run folder touched.
   const auto times = summaryTimes(out / "runs");

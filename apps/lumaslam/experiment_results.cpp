@@ -110,20 +110,22 @@ Spread spreadOf(std::vector<double> values) {
   return {values.front(), median, values.back()};
 }
 
-// One line per (dataset, config), over its complete runs.
+// One line per (dataset, config), over its complete runs; ATE only when each of them has one
+// (a spread over some of the runs would mislead).
 std::string summaryLine(const std::vector<const ResultRow*>& cell_rows) {
+  std::size_t complete = 0;
   std::vector<double> ate, tracked;
   for (const ResultRow* r : cell_rows) {
     if (r->status != "complete") continue;
+    ++complete;
     if (r->ate) ate.push_back(r->ate->rmse);
     if (r->tracked) tracked.push_back(*r->tracked);
   }
-  const Spread a = spreadOf(ate);
+  const Spread a = ate.size() == complete ? spreadOf(ate) : Spread{};
   const Spread t = spreadOf(tracked);
   return fmt::format("{},{},{},{},{},{},{},{},{},{}\n", csvField(cell_rows.front()->dataset),
-                     csvField(cell_rows.front()->config), cell_rows.size(), tracked.size(),
-                     cell(a.min), cell(a.median), cell(a.max), cell(t.min), cell(t.median),
-                     cell(t.max));
+                     csvField(cell_rows.front()->config), cell_rows.size(), complete, cell(a.min),
+                     cell(a.median), cell(a.max), cell(t.min), cell(t.median), cell(t.max));
 }
 
 void writeSummaryCsv(const std::vector<ResultRow>& rows, const std::filesystem::path& file) {
