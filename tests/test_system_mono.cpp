@@ -12,7 +12,10 @@ using namespace lumaslam;
 // leave room for the 95% tracked criterion.
 TEST(SystemMono, RgbStreamOfXyzSequence) {
   test::expectMonocularAcceptance(
-      test::runOnPreset("xyz-rgbd", 260, 1, {.sensor = io::SensorType::Monocular}));
+      test::runOnPreset("xyz-rgbd", 260, 1, {.sensor = io::SensorType::Monocular}),
+      // ~2x the measured ATE (issue 22): 3.29 mm over 2.26 m = 0.146 % (sequential,
+      // deterministic; logged by runOnPreset).
+      /*max_ate_fraction=*/0.003);
 }
 
 }  // namespace

@@ -10,7 +10,10 @@ using namespace lumaslam;
 
 TEST(SystemMono, LeftCameraOfStereoSequence) {
   test::expectMonocularAcceptance(
-      test::runOnPreset("xyz-stereo", 220, 2, {.sensor = io::SensorType::Monocular}));
+      test::runOnPreset("xyz-stereo", 220, 2, {.sensor = io::SensorType::Monocular}),
+      // ~2x the measured ATE (issue 22): 3.12 mm over 2.94 m = 0.106 % (sequential,
+      // deterministic; logged by runOnPreset).
+      /*max_ate_fraction=*/0.0021);
 }
 
 }  // namespace

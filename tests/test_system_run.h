@@ -92,22 +92,28 @@ inline RunResult runOnPreset(const std::string& preset, int frames, std::uint64_
   if (settings.sensor == io::SensorType::Monocular) eval_options.align = eval::AlignMode::Sim3;
   run.report = eval::evaluate(system.frameTrajectory(), ground_truth, eval_options);
   spdlog::info(
-      "{} ({}): tracked {}/{} from frame {}, {} keyframes, {} points, ATE rmse {:.4f} m "
-      "over {:.2f} m",
+      "{} ({}): tracked {}/{} from frame {}, {} keyframes, {} points, ATE rmse {:.2f} mm "
+      "over {:.2f} m ({:.3f} % of the path)",
       preset, io::toString(settings.sensor), run.tracked, frames,
       run.first_tracked ? static_cast<long>(*run.first_tracked) : -1L, run.keyframes,
-      system.mapPointCount(), run.report.ate.stats.rmse, run.ground_truth_length);
+      system.mapPointCount(), 1000.0 * run.report.ate.stats.rmse, run.ground_truth_length,
+      100.0 * run.report.ate.stats.rmse / run.ground_truth_length);
   return run;
 }
 
 // Issue 7's monocular acceptance: initialised within 30 frames, >= 95% of all frames tracked
-// (those before initialisation count as lost), Sim3 ATE <= 2% of the distance travelled.
-inline void expectMonocularAcceptance(const RunResult& run) {
+// (those before initialisation count as lost), Sim3 ATE <= 2% of the distance travelled (a
+// target, not a measurement). Each test also passes `max_ate_fraction`, its own bound at ~2x
+// the ATE measured on its input (issue 22), which is much tighter than the target.
+inline void expectMonocularAcceptance(const RunResult& run, double max_ate_fraction) {
   ASSERT_TRUE(run.first_tracked.has_value()) << "never initialised";
   EXPECT_LT(*run.first_tracked, 30U);
   EXPECT_GE(static_cast<double>(run.tracked), 0.95 * static_cast<double>(run.frames));
   EXPECT_EQ(run.report.alignment.mode, eval::AlignMode::Sim3);
-  EXPECT_LE(run.report.ate.stats.rmse, 0.02 * run.ground_truth_length);
+  EXPECT_LE(run.report.ate.stats.rmse, 0.02 * run.ground_truth_length);  // issue 7's target
+  EXPECT_LE(run.report.ate.stats.rmse, max_ate_fraction * run.ground_truth_length)
+      << "ATE " << 1000.0 * run.report.ate.stats.rmse << " mm over " << run.ground_truth_length
+      << " m";
   EXPECT_GT(run.keyframes, 2U);
 }
 
