@@ -110,12 +110,14 @@ TEST(SystemMonoRelocalization, ResumesInTheSameMapAfterTwentyBlackFrames) {
   const double length = test::pathLength(run.ground_truth);
   std::printf(
       "mono blackout: tracking again at frame %d (%d after the light)%s, %d of %d frames tracked "
-      "after it, %zu keyframes (%zu before), ATE (Sim3, whole run) %.1f mm over %.2f m\n",
+      "after it, %zu keyframes (%zu before), ATE (Sim3, whole run) %.2f mm over %.2f m\n",
       *recovered, *recovered - light_back,
       run.outcomes[static_cast<std::size_t>(*recovered)].relocalized ? " by relocalization" : "",
       tracked_after, kFrames - *recovered, run.keyframes.size(), run.keyframes_before,
       1000.0 * report.ate.stats.rmse, length);
-  EXPECT_LE(report.ate.stats.rmse, 0.02 * length);
+  // Issue 7's target is 2 % of the path; the bound is ~2x the measured ATE (issue 22): 3.69 mm
+  // over 4.17 m = 0.089 % (sequential, deterministic; printed above).
+  EXPECT_LE(report.ate.stats.rmse, 0.0018 * length);
 }
 
 }  // namespace
