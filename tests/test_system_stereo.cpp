@@ -29,7 +29,8 @@ std::string asPinHoleWithoutPose(const std::string& yaml) {
 TEST(SystemStereo, TracksSyntheticStereoWithXyzMotion) {
   const auto run = test::runOnPreset("xyz-stereo", 150, 1);
   EXPECT_EQ(run.tracked, run.frames);
-  EXPECT_LE(run.report.ate.stats.rmse, 0.02);
+  // ~2x the measured ATE (issue 22): 3.0 mm (sequential, deterministic; logged by runOnPreset).
+  EXPECT_LE(run.report.ate.stats.rmse, 0.006);
   EXPECT_GT(run.keyframes, 1U);
 }
 
@@ -92,8 +93,10 @@ TEST(SystemStereo, ReportsPosesOfTheCalibratedCameraOfARotatedRig) {
   }
   spdlog::info("rotated rig: worst position error {:.4f} m, worst angle {:.3f} deg", worst_position,
                worst_angle * 180.0 / M_PI);
+  // ~2x the measured errors (issue 22; sequential, deterministic; logged above): 6.6 mm (the
+  // 1 cm bound was already within 2x) and 0.110 deg.
   EXPECT_LT(worst_position, 0.01);
-  EXPECT_LT(worst_angle * 180.0 / M_PI, 0.5);
+  EXPECT_LT(worst_angle * 180.0 / M_PI, 0.22);
 }
 
 // EuRoC V1_01 starts with the MAV at rest on the floor: an unrectified pair with real
@@ -130,7 +133,8 @@ TEST(SystemStereo, RealEurocAtRestTracksEveryFrameWithoutDrift) {
     drift =
         std::max(drift, (pose.T_w_c.translation() - trajectory.front().T_w_c.translation()).norm());
   }
-  EXPECT_LE(drift, 0.01);
+  // ~2x the measured drift (issue 22): 2.8 mm (sequential, deterministic; logged below).
+  EXPECT_LE(drift, 0.006);
   spdlog::info("EuRoC V1_01 micro: {}/{} tracked, {} keyframes, drift {:.4f} m", tracked, frames,
                system.keyFrameCount(), drift);
 }
