@@ -35,7 +35,8 @@ TEST(CliRun, TracksASyntheticRgbdDatasetAndWritesResults) {
   EXPECT_EQ(summary["frames"].get<int>(), 60);
   EXPECT_GE(summary["tracked"].get<int>(), 58);
   ASSERT_TRUE(summary.contains("evaluation")) << run.output;
-  EXPECT_LT(summary["evaluation"]["ate"]["rmse"].get<double>(), 0.02);
+  // ~2x the measured ATE (issue 22): 3.25 mm, this command (--sequential, deterministic).
+  EXPECT_LT(summary["evaluation"]["ate"]["rmse"].get<double>(), 0.0065);
   EXPECT_EQ(lumaslam::io::readTrajectory(out / "trajectory.txt").size(),
             summary["tracked"].get<std::size_t>());
 
@@ -77,7 +78,9 @@ TEST(CliRun, RepeatWritesEachRunAndTheirSpread) {
   EXPECT_DOUBLE_EQ(ate["max"].get<double>(), *std::max_element(rmse.begin(), rmse.end()));
   EXPECT_LE(ate["min"].get<double>(), ate["median"].get<double>());
   EXPECT_LE(ate["median"].get<double>(), ate["max"].get<double>());
-  EXPECT_LT(ate["max"].get<double>(), 0.02);
+  // ~2x the worst measured ATE (issue 22): local mapping threaded, so this command was run 3
+  // times (9 runs in all): every run 2.09 mm.
+  EXPECT_LT(ate["max"].get<double>(), 0.0042);
 
   const auto zero = runCli("run --dataset tum:" + data.string() + " --repeat 0");
   EXPECT_NE(zero.exit_code, 0);
