@@ -33,7 +33,9 @@ TEST(CliRunKittiMono, Sequence07Excerpt) {
   EXPECT_EQ(summary["evaluation"]["alignment"]["mode"].get<std::string>(), "sim3");
   const auto ground_truth = lumaslam::io::readTrajectory(
       sequence.parent_path().parent_path() / "poses/07.txt", lumaslam::io::TrajectoryFormat::Kitti);
-  EXPECT_LT(summary["evaluation"]["ate"]["rmse"].get<double>(), 0.02 * pathLength(ground_truth));
+  // Issue 7's target is 2 % of the path; the bound is ~2x the measured ATE (issue 22): 0.259 m
+  // over 90.6 m = 0.29 %, the same to 1e-15 in 3 runs of this command (--sequential).
+  EXPECT_LT(summary["evaluation"]["ate"]["rmse"].get<double>(), 0.006 * pathLength(ground_truth));
 }
 
 }  // namespace

@@ -37,7 +37,9 @@ TEST(CliRunMono, TracksTheRgbStreamOfASyntheticDatasetWithSim3Evaluation) {
   ASSERT_TRUE(summary.contains("evaluation")) << run.output;
   EXPECT_EQ(summary["evaluation"]["alignment"]["mode"].get<std::string>(), "sim3");
   const auto ground_truth = lumaslam::io::readTrajectory(data / "groundtruth.txt");
-  EXPECT_LT(summary["evaluation"]["ate"]["rmse"].get<double>(), 0.02 * pathLength(ground_truth));
+  // Issue 7's target is 2 % of the path; the bound is ~2x the measured ATE (issue 22): 4.96 mm
+  // over 1.22 m = 0.41 % (this command, --sequential, deterministic).
+  EXPECT_LT(summary["evaluation"]["ate"]["rmse"].get<double>(), 0.008 * pathLength(ground_truth));
 }
 
 }  // namespace
