@@ -27,7 +27,9 @@ TEST(CliDemo, RunsBaselineAndLumaslamOnAWalkingSequence) {
   EXPECT_GT(full["detector"]["dropped_features_per_frame"].get<double>(), 10.0);
   EXPECT_EQ(full["tracked"].get<int>(), 60);
   ASSERT_TRUE(full.contains("evaluation")) << demo.output;
-  EXPECT_LT(full["evaluation"]["ate"]["rmse"].get<double>(), 0.02);
+  // ~2x the worst measured ATE (issue 22): the demo maps threaded, so it was run 3 times
+  // (`lumaslam demo --frames 60`): 4.22, 4.22, 4.24 mm.
+  EXPECT_LT(full["evaluation"]["ate"]["rmse"].get<double>(), 0.0085);
   EXPECT_NE(demo.output.find("baseline (no enhance, no removal)"), std::string::npos);
 }
 

@@ -28,7 +28,8 @@ TEST(CliRunStereo, TracksASyntheticEurocDataset) {
   EXPECT_EQ(summary["frames"].get<int>(), 40);
   EXPECT_EQ(summary["tracked"].get<int>(), 40);
   ASSERT_TRUE(summary.contains("evaluation")) << run.output;
-  EXPECT_LT(summary["evaluation"]["ate"]["rmse"].get<double>(), 0.02);
+  // ~2x the measured ATE (issue 22): 2.29 mm (this command, --sequential, deterministic).
+  EXPECT_LT(summary["evaluation"]["ate"]["rmse"].get<double>(), 0.0045);
 }
 
 TEST(CliRunStereo, TracksRealEurocWithItsCalibration) {
