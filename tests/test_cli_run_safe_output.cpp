@@ -13,6 +13,7 @@
 
 #include <chrono>
 #include <fstream>
+#include <set>
 #include <string>
 #include <thread>
 #include <vector>
@@ -123,6 +124,29 @@ TEST_F(CliRunSafeOutput, AWriteFailureIsAnErrorNamingTheFile) {
   ASSERT_TRUE(std::filesystem::exists(out_ / "trajectory.txt"));
   EXPECT_GE(trajectoryPoses(out_ / "trajectory.txt"), static_cast<std::size_t>(kFrames - 1));
   EXPECT_FALSE(anyPartialFileIn(out_));
+  EXPECT_FALSE(std::filesystem::exists(out_ / "manifest.json"));  // the run did not finish
+}
+
+// manifest.json is written last: every result file with its size and the run's status; a run
+// that failed while writing its results has none.
+TEST_F(CliRunSafeOutput, TheManifestListsEveryResultFileWithItsSize) {
+  const auto result = run("--max-frames 10");
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  std::ifstream in(out_ / "manifest.json");
+  ASSERT_TRUE(in) << "no manifest.json";
+  const auto manifest = nlohmann::json::parse(in);
+  EXPECT_EQ(manifest["status"], "complete");
+  EXPECT_TRUE(manifest["errors"].empty());
+  std::set<std::string> listed;
+  for (const auto& file : manifest["files"]) {
+    const std::string name = file["name"];
+    listed.insert(name);
+    EXPECT_EQ(file["bytes"].get<std::uintmax_t>(), std::filesystem::file_size(out_ / name)) << name;
+  }
+  for (const char* name : {"trajectory.txt", "keyframes.txt", "timing.csv", "summary.json"}) {
+    EXPECT_TRUE(listed.count(name)) << name << " not in the manifest";
+  }
+  EXPECT_FALSE(listed.count("manifest.json"));
 }
 
 TEST_F(CliRunSafeOutput, AnOutputFolderThatCannotBeCreatedFailsBeforeTheFirstFrame) {
@@ -192,6 +216,9 @@ TEST_P(CliRunSignal, StopsAndWritesThePartialResults) {
 
   const auto summary = readRunSummary(out);
   EXPECT_EQ(summary["status"], "partial");
+  std::ifstream manifest(out / "manifest.json");
+  ASSERT_TRUE(manifest) << "no manifest.json";
+  EXPECT_EQ(nlohmann::json::parse(manifest)["status"], "partial");
   const int frames = summary["frames"].get<int>();
   EXPECT_GE(frames, 20);
   EXPECT_LT(frames, kFrames);

@@ -19,6 +19,7 @@
 #include "lumaslam/io/trajectory_io.h"
 #include "lumaslam/loop/loop_closer.h"
 #include "lumaslam/pipeline.h"
+#include "run_manifest.h"
 #include "stop_signal.h"
 
 namespace lumaslam::cli {
@@ -243,7 +244,7 @@ void evaluateAgainstGroundTruth(io::DatasetReader& reader, const io::Settings& s
 void removeEarlierOutputs(const std::filesystem::path& out) {
   std::error_code ec;
   for (const char* name : {"trajectory.txt", "keyframes.txt", "timing.csv", "summary.json",
-                           "evaluation.svg", "repeatability.json"}) {
+                           "evaluation.svg", "repeatability.json", "manifest.json"}) {
     if (std::filesystem::is_regular_file(out / name, ec)) std::filesystem::remove(out / name, ec);
   }
   for (const auto& entry : std::filesystem::directory_iterator(out, ec)) {
@@ -253,6 +254,20 @@ void removeEarlierOutputs(const std::filesystem::path& out) {
     }
   }
 }
+
+namespace {
+
+// Last: its presence says every result above was written.
+void writeManifest(const RunOptions& options, const std::string& status,
+                   const std::string& save_error) {
+  std::vector<std::filesystem::path> map_file;
+  if (options.save_map && save_error.empty()) map_file.push_back(*options.save_map);
+  std::vector<std::string> errors;
+  if (!save_error.empty()) errors.push_back(save_error);
+  writeRunManifest(options.out, status, map_file, errors);
+}
+
+}  // namespace
 
 int runPipeline(const RunOptions& options) {
   auto settings_path = options.settings;
@@ -318,6 +333,7 @@ int runPipeline(const RunOptions& options) {
   io::OutputFile summary_file(options.out / "summary.json");
   summary_file.stream() << summary.dump(2) << '\n';
   summary_file.commit();
+  writeManifest(options, loop.status, save_error);
   std::printf("results in %s\n", options.out.string().c_str());
   if (!save_error.empty()) fail("{}", save_error);
   return loop.exit_code;
