@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cctype>
-#include <fstream>
 #include <set>
 #include <sstream>
 
@@ -10,6 +9,8 @@
 #include <opencv2/core.hpp>
 
 #include "lumaslam/core/error.h"
+#include "lumaslam/core/read_file.h"
+#include "lumaslam/core/settings_lines.h"
 #include "lumaslam/synth/preset.h"
 
 namespace lumaslam::cli {
@@ -34,30 +35,17 @@ std::string withoutComments(const std::string& yaml) {
   std::string out;
   std::istringstream lines(yaml);
   for (std::string line; std::getline(lines, line);) {
-    char quote = 0;
-    for (std::size_t i = 0; i < line.size(); ++i) {
-      const char c = line[i];
-      if (quote != 0) {
-        if (c == quote) quote = 0;
-      } else if (c == '"' || c == '\'') {
-        quote = c;
-      } else if (c == '#' && (i == 0 || std::isspace(static_cast<unsigned char>(line[i - 1])))) {
-        line.erase(i);
-        break;
-      }
+    std::string_view kept = core::withoutComment(line);
+    while (!kept.empty() && std::isspace(static_cast<unsigned char>(kept.back()))) {
+      kept.remove_suffix(1);
     }
-    while (!line.empty() && std::isspace(static_cast<unsigned char>(line.back()))) line.pop_back();
-    out += line + '\n';
+    out.append(kept).push_back('\n');
   }
   return out;
 }
 
 cv::FileStorage openPlan(const std::filesystem::path& file) {
-  std::ifstream in(file);
-  if (!in) fail("{}: plan file not found", file.string());
-  std::stringstream text;
-  text << in.rdbuf();
-  std::string yaml = withoutComments(text.str());
+  std::string yaml = withoutComments(core::readWholeFile(file, "plan file"));
   // cv::FileStorage needs the header that hand-written files usually leave out.
   if (!yaml.starts_with("%YAML")) yaml = "%YAML:1.0\n" + yaml;
   cv::FileStorage storage;

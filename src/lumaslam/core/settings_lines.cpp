@@ -43,10 +43,6 @@ std::size_t scanUnquoted(std::string_view s, OnChar on_char) {
   return s.size();
 }
 
-std::string_view withoutComment(std::string_view s) {
-  return s.substr(0, scanUnquoted(s, [](std::size_t) {}));
-}
-
 // Change of the flow-collection depth ([ and {) over `s`.
 int flowDepthChange(std::string_view s) {
   int depth = 0;
@@ -135,6 +131,10 @@ class KeyScanner {
 };
 
 }  // namespace
+
+std::string_view withoutComment(std::string_view line) {
+  return line.substr(0, scanUnquoted(line, [](std::size_t) {}));
+}
 
 std::map<std::string, KeyLine> scanKeyLines(std::string_view text, const std::string& origin) {
   KeyScanner scanner(origin);

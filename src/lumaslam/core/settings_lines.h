@@ -13,6 +13,9 @@ struct KeyLine {
   std::string value;  // as written, without a trailing comment; empty for a map's key
 };
 
+// One line of YAML without its comment ('#' at the start or after a blank, outside quotes).
+std::string_view withoutComment(std::string_view line);
+
 // Keys in flat form: nested block maps are joined with '.', so `Camera.fx: 1` and
 // `Camera:\n  fx: 1` are the same key. Throws Error "ORIGIN: key 'K' is set twice: lines A and
 // B" when a key is set twice.
