@@ -6,7 +6,6 @@
 
 #include <spdlog/spdlog.h>
 
-#include "lumaslam/loop/bow_frame_relocalizer.h"
 #include "lumaslam/camera/stereo_rectifier.h"
 #include "lumaslam/core/error.h"
 #include "lumaslam/core/gray_image.h"
@@ -16,6 +15,7 @@
 #include "lumaslam/detect/dynamic_mask.h"
 #include "lumaslam/enhance/enhancer.h"
 #include "lumaslam/io/dataset_reader.h"
+#include "lumaslam/loop/bow_frame_relocalizer.h"
 #include "lumaslam/loop/loop_closer.h"
 #include "lumaslam/loop/place_recognition.h"
 #include "lumaslam/loop/vocabulary_choice.h"
@@ -176,8 +176,8 @@ Pipeline::Pipeline(const io::Settings& settings, const PipelineOptions& options)
   tracker_ = std::make_unique<track::Tracker>(map_, *mapper_, camera, frame_builder_->pyramid(),
                                               tracker_params);
   if (places_) {
-    tracker_->setRelocalizer(
-        std::make_shared<loop::BowFrameRelocalizer>(places_, map_, camera, frame_builder_->pyramid()));
+    tracker_->setRelocalizer(std::make_shared<loop::BowFrameRelocalizer>(
+        places_, map_, camera, frame_builder_->pyramid()));
   }
   if (settings_.file) checkUnknownKeys(*settings_.file, options.strict_settings);
 }
@@ -194,7 +194,7 @@ void Pipeline::shutdown() {
 }
 
 Pipeline::Images Pipeline::prepareImages(const cv::Mat& image, FrameTiming& timing,
-                                     const enhance::EnhancementPlan* plan) {
+                                         const enhance::EnhancementPlan* plan) {
   if (image.empty()) fail("empty image");
   if (image.depth() != CV_8U) fail("expected an 8-bit image, got depth {}", image.depth());
   const bool enhanced_for_detector = detector_params_ && detector_params_->image == "enhanced";
@@ -210,7 +210,7 @@ Pipeline::Images Pipeline::prepareImages(const cv::Mat& image, FrameTiming& timi
 // Runs beside prepareImages() of the left image: without enhancement, that touches no state;
 // with the left image's plan, only const (thread-safe) Enhancer calls.
 cv::Mat Pipeline::rightGray(const cv::Mat& image, FrameTiming& timing,
-                          const enhance::EnhancementPlan* left_plan) {
+                            const enhance::EnhancementPlan* left_plan) {
   if (left_plan) {
     const auto start = Clock::now();
     const bool whole_plan = enhancer_->params().stereo == enhance::StereoMapping::kShared;
@@ -240,7 +240,7 @@ SensorFrame toSensorFrame(const io::FrameData& frame) {
 }
 
 FrameResult Pipeline::trackRgbd(std::size_t index, double timestamp, const cv::Mat& image,
-                              const cv::Mat& depth, const cv::Mat& dynamic_mask) {
+                                const cv::Mat& depth, const cv::Mat& dynamic_mask) {
   SensorFrame frame;
   frame.index = index;
   frame.timestamp = timestamp;
@@ -305,6 +305,7 @@ track::Frame Pipeline::buildStereoFrame(const SensorFrame& frame, FrameResult& r
   const cv::Mat gray_right = shared_plan ? right_enhanced.get() : right_job.get();
   timing.enhance += right_timing.enhance;  // work of both, partly overlapped
 
+  result.feature_image = images.gray;
   return withoutDynamicFeatures(frame, cv::Mat(), result, [&] {
     auto built =
         frame_builder_->buildStereo(frame.index, frame.timestamp, images.gray, gray_right, mask);
@@ -322,8 +323,8 @@ void Pipeline::pushForDetection(const SensorFrame& input, const cv::Mat& detecto
 // ORB extraction (`build`); with a detector, the detection of this frame runs meanwhile on its
 // thread (paper section 3.2) and the features on moving objects are dropped afterwards.
 track::Frame Pipeline::withoutDynamicFeatures(const SensorFrame& input, const cv::Mat& depth_m,
-                                            FrameResult& result,
-                                            const std::function<track::Frame()>& build) {
+                                              FrameResult& result,
+                                              const std::function<track::Frame()>& build) {
   try {
     auto frame = build();
     if (detector_) removeDynamicFeatures(frame, depth_m, result);
@@ -340,7 +341,7 @@ track::Frame Pipeline::withoutDynamicFeatures(const SensorFrame& input, const cv
 }
 
 void Pipeline::removeDynamicFeatures(track::Frame& frame, const cv::Mat& depth_m,
-                                   FrameResult& result) {
+                                     FrameResult& result) {
   const auto wait = Clock::now();
   const auto detections = detector_->take(static_cast<std::int64_t>(frame.index));
   result.timing.detection_wait = msSince(wait);
@@ -355,6 +356,7 @@ void Pipeline::removeDynamicFeatures(track::Frame& frame, const cv::Mat& depth_m
   // RGB-D: the background seen behind a person keeps its features.
   if (!depth_m.empty())
     mask = detect::refineMaskWithDepth(mask, depth_m, result.dynamic_boxes, mask_params);
+  result.dynamic_mask = mask;
   const auto& keypoints = frame.features->keypoints;
   const auto kept = detect::filterKeypoints(keypoints, mask);
   if (kept.size() == keypoints.size()) return;
@@ -381,6 +383,7 @@ FrameResult Pipeline::track(const SensorFrame& input) {
     const cv::Mat depth_m =
         settings_.sensor == io::SensorType::Rgbd ? depthInMetres(input) : cv::Mat();
     pushForDetection(input, images.detector);
+    result.feature_image = images.gray;
     frame = withoutDynamicFeatures(input, depth_m, result, [&] {
       const auto stage = Clock::now();
       auto built = frame_builder_->build(input.index, input.timestamp, images.gray, depth_m,
@@ -389,9 +392,14 @@ FrameResult Pipeline::track(const SensorFrame& input) {
       return built;
     });
   }
+  result.kept_features.reserve(frame->features->keypoints.size());
+  for (const auto& keypoint : frame->features->keypoints) {
+    result.kept_features.push_back(keypoint.pt);
+  }
   auto stage = Clock::now();
   result.outcome = tracker_->track(std::move(*frame));
   result.timing.tracking = msSince(stage);
+  if (result.outcome.T_w_c) result.centre_in_map = result.outcome.T_w_c->translation();
   if (rectifier_ && result.outcome.T_w_c) {
     result.outcome.T_w_c = toCalibratedCamera(*result.outcome.T_w_c);
   }

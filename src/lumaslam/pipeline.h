@@ -84,6 +84,15 @@ struct FrameResult {
   FrameTiming timing;
   std::vector<cv::Rect2f> dynamic_boxes;      // this frame's detections (when a detector runs)
   std::vector<cv::Point2f> dropped_features;  // keypoints removed by the dynamic mask
+  // What the front end saw (for a viewer): the gray image features were taken from (enhanced
+  // when enhancement is on; the rectified left image for stereo), the keypoints it kept, and
+  // the dynamic mask made from this frame's boxes (empty without boxes).
+  cv::Mat feature_image;
+  std::vector<cv::Point2f> kept_features;
+  cv::Mat dynamic_mask;
+  // The camera centre in the map's world (for a rectified pair the rectified camera's world,
+  // where outcome.T_w_c is converted back to the calibrated camera's).
+  std::optional<Eigen::Vector3d> centre_in_map;
 };
 
 class Pipeline {
@@ -131,6 +140,8 @@ class Pipeline {
   Trajectory keyFrameTrajectory() const;  // keyframes of the main map
   std::size_t keyFrameCount() const;
   std::size_t mapPointCount() const;
+  // The atlas, for readers in other threads (a viewer); its own locks make reads safe.
+  std::shared_ptr<const map::Map> map() const { return map_; }
   const track::Tracker& tracker() const { return *tracker_; }
   // Vocabulary + keyframe database, shared by relocalization and loop closing; null without a
   // vocabulary ("none", or no default vocabulary found): relocalization off.
@@ -140,6 +151,8 @@ class Pipeline {
   const io::Settings& settings() const { return settings_; }
   // The camera tracking works in (the rectified one for an unrectified stereo pair).
   const track::FrameCamera& frameCamera() const;
+  // True for an unrectified stereo pair: keypoints are in the rectified left image's pixels.
+  bool rectifiesStereo() const { return rectifier_ != nullptr; }
   // "none", "yolo MODEL" or "box_file FILE".
   const std::string& detectorDescription() const { return detector_description_; }
   // The vocabulary file in use, or "none".
