@@ -62,6 +62,20 @@ const bool registered = registerCommand(
       cmd.add_option("--save-map", options->save_map,
                      "Write the map (every map of the atlas) to this file at the end, after the "
                      "results");
+      cmd.add_option("--viewer", options->viewer_port,
+                     "Serve a live view of the run on this port (0: any free port; the page is "
+                     "at http://127.0.0.1:PORT/, docs/viewer.md)")
+          ->expected(0, 1)
+          ->default_str("7878")
+          ->check(CLI::Range(0, 65535));
+      cmd.add_option("--viewer-address", options->viewer_address,
+                     "Address the viewer listens on; anything but 127.0.0.1 shows the run to "
+                     "the network (a warning says so)")
+          ->capture_default_str();
+      cmd.add_flag("--viewer-paused", options->viewer_paused,
+                   "Start the viewer paused: frames advance with the page's Step / Resume");
+      cmd.add_flag("--viewer-keep", options->viewer_keep,
+                   "Keep serving the viewer after the run, until Ctrl-C");
       cmd.add_option("--repeat", *repeats,
                      "Run N times into OUT/run_K and report the min/median/max spread")
           ->check(wholeNumber(1, 1000));
@@ -75,6 +89,12 @@ const bool registered = registerCommand(
         if (options->localization && !options->load_map) {
           fail("--localization needs a map to localize in (--load-map FILE)");
         }
+        const bool viewer_flags = options->viewer_paused || options->viewer_keep ||
+                                  options->viewer_address != "127.0.0.1";
+        if (viewer_flags && !options->viewer_port) {
+          fail("--viewer-paused, --viewer-keep and --viewer-address need --viewer");
+        }
+        if (options->viewer_port && *repeats > 1) fail("--viewer with --repeat: one run at a time");
         if (options->save_map && *repeats > 1) {
           fail("--save-map with --repeat: every run would write the same file");
         }

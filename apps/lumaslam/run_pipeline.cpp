@@ -1,6 +1,5 @@
 #include "run_pipeline.h"
 
-#include <unistd.h>
 
 #include <algorithm>
 #include <cstdio>
@@ -19,7 +18,9 @@
 #include "lumaslam/io/trajectory_io.h"
 #include "lumaslam/loop/loop_closer.h"
 #include "lumaslam/pipeline.h"
+#include "progress_line.h"
 #include "run_manifest.h"
+#include "run_viewer.h"
 #include "stop_signal.h"
 
 namespace lumaslam::cli {
@@ -63,6 +64,7 @@ struct FrameLoop {
   double dropped_sum = 0.0;
   double moving_sum = 0.0;
   double wait_sum = 0.0;
+  std::vector<double> viewer_ms;    // tracking-thread time handing frames to the viewer
   std::string status = "complete";  // "partial" (stopped by a signal), "stopped at a bad frame"
   int exit_code = 0;
 };
@@ -97,13 +99,16 @@ bool recordBadFrame(FrameLoop& loop, std::string what, const RunOptions& options
 
 // Reads and tracks every frame, one timing.csv row each, until the dataset ends, a signal
 // asks to stop, or a bad frame stops it.
+// With a viewer, each frame is handed to it and the loop waits while the page has paused.
 FrameLoop trackFrames(io::DatasetReader& reader, Pipeline& system, io::OutputFile& timing,
-                      const RunOptions& options, const StopOnSignal& stop) {
+                      const RunOptions& options, const StopOnSignal& stop, viewer::Viewer* viewer) {
   constexpr std::size_t kMaxUnreadableInARow = 100;  // a reader that cannot go on
-  const bool progress = isatty(STDERR_FILENO) != 0;
+  ProgressLine progress("frame", reader.size());
   FrameLoop loop;
   std::size_t unreadable_in_a_row = 0;
   while (!stop.requested()) {
+    if (viewer) viewer->waitWhilePaused([&stop] { return stop.requested(); });
+    if (stop.requested()) break;
     std::optional<io::FrameData> frame;
     try {
       frame = reader.next();
@@ -138,12 +143,9 @@ FrameLoop trackFrames(io::DatasetReader& reader, Pipeline& system, io::OutputFil
     ++loop.frames;
     if (result.outcome.state == track::TrackingState::Ok) ++loop.tracked;
     if (result.outcome.relocalized) ++loop.relocalized;
-    if (progress) {
-      std::fprintf(stderr, "\rframe %zu/%zu  %s  %.1f ms   ", loop.frames, reader.size(),
-                   track::toString(result.outcome.state), result.timing.total);
-    }
+    if (viewer) loop.viewer_ms.push_back(publishFrame(*viewer, *frame, result, system));
+    progress.update(loop.frames, track::toString(result.outcome.state));
   }
-  if (progress) std::fprintf(stderr, "\n");
   if (stop.requested()) {
     spdlog::warn("{}: stopped after {} frames; writing what was tracked (partial)", stop.name(),
                  loop.frames);
@@ -307,11 +309,13 @@ int runPipeline(const RunOptions& options) {
          "detection_wait_ms,detection_ms,boxes,dropped_features,map,step,moving_features,"
          "motion_ms\n";
   const StopOnSignal stop;
-  const FrameLoop loop = trackFrames(*reader, system, timing, options, stop);
+  const auto viewer = startViewer(options, system);
+  const FrameLoop loop = trackFrames(*reader, system, timing, options, stop, viewer.get());
   if (loop.frames == 0 && loop.exit_code == 0) {
     fail("{}: the dataset delivered no frames", options.dataset);
   }
   system.shutdown();
+  if (viewer) viewer->finish(loop.status);
 
   // Results, each file complete or not written (io::OutputFile): trajectories first.
   const auto trajectory = system.frameTrajectory();
@@ -322,6 +326,7 @@ int runPipeline(const RunOptions& options) {
   // After the trajectories, so that a map that cannot be written costs no results.
   const std::string save_error = saveMapIfAsked(system, options);
   summary["map_file"] = mapFileSummary(options, system, loaded_keyframes, save_error);
+  if (viewer) summary["viewer"] = viewerSummary(*viewer, loop.viewer_ms);
   timing.commit();
   std::printf(
       "%s: %zu frames, %zu tracked, %zu lost, %zu skipped, %zu keyframes, %.1f ms/frame "
@@ -335,6 +340,7 @@ int runPipeline(const RunOptions& options) {
   summary_file.commit();
   writeManifest(options, loop.status, save_error);
   std::printf("results in %s\n", options.out.string().c_str());
+  if (viewer && options.viewer_keep) keepServing(*viewer, stop);
   if (!save_error.empty()) fail("{}", save_error);
   return loop.exit_code;
 }

@@ -28,6 +28,11 @@ struct RunOptions {
   // skip it with a warning (default), or stop there; either way what was tracked is written.
   enum class BadFrame { Skip, Stop };
   BadFrame on_bad_frame = BadFrame::Skip;
+  // The live viewer (docs/viewer.md): serve the page on this port (0: any free port).
+  std::optional<int> viewer_port;
+  std::string viewer_address = "127.0.0.1";
+  bool viewer_paused = false;  // wait for the page's Step / Resume before the first frame
+  bool viewer_keep = false;    // after the results are written, serve until Ctrl-C
 };
 
 // Removes the files an earlier run left in `out` (trajectory*.txt, keyframes.txt, timing.csv,

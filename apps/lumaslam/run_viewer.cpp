@@ -1,0 +1,93 @@
+#include "run_viewer.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <thread>
+
+#include <spdlog/spdlog.h>
+
+#include "lumaslam/track/tracker.h"
+
+namespace lumaslam::cli {
+namespace {
+
+bool isLoopback(const std::string& address) {
+  return address == "127.0.0.1" || address == "localhost" || address == "::1";
+}
+
+viewer::FrameView frameViewOf(io::FrameData& frame, const FrameResult& result,
+                              const Pipeline& system) {
+  viewer::FrameView view;
+  view.index = frame.index;
+  view.timestamp = frame.timestamp;
+  view.state = track::toString(result.outcome.state);
+  view.step = track::toString(result.outcome.step);
+  view.inliers = result.outcome.inliers;
+  view.keyframe = result.outcome.new_keyframe;
+  view.relocalized = result.outcome.relocalized;
+  view.map = static_cast<int>(result.outcome.map);
+  view.camera_centre = result.centre_in_map;
+  view.raw = std::move(frame.image);  // the reader's next frame is a new image
+  // The enhancer may reuse its buffers for the next frame: the view keeps its own copy.
+  view.features_image = result.feature_image.clone();
+  view.overlays_fit_raw = !system.rectifiesStereo();
+  view.kept = result.kept_features;
+  view.dropped = result.dropped_features;
+  view.boxes = result.dynamic_boxes;
+  view.dynamic_mask = result.dynamic_mask;
+  view.moving_features = result.outcome.moving_features;
+  const auto& t = result.timing;
+  view.timing = {t.enhance, t.features, t.tracking, t.mapping, t.detection_wait, t.total};
+  return view;
+}
+
+}  // namespace
+
+std::unique_ptr<viewer::Viewer> startViewer(const RunOptions& options, const Pipeline& system) {
+  if (!options.viewer_port) return nullptr;
+  viewer::ViewerOptions viewer_options;
+  viewer_options.address = options.viewer_address;
+  viewer_options.port = *options.viewer_port;
+  viewer_options.start_paused = options.viewer_paused;
+  auto viewer = std::make_unique<viewer::Viewer>(viewer_options, system.map());
+  if (!isLoopback(options.viewer_address)) {
+    spdlog::warn(
+        "viewer: listening on {}: anyone who can reach this machine sees the run and "
+        "can pause it",
+        options.viewer_address);
+  }
+  std::printf("viewer: %s%s\n", viewer->url().c_str(),
+              options.viewer_paused ? " (paused: press Step or Resume)" : "");
+  std::fflush(stdout);
+  return viewer;
+}
+
+double publishFrame(viewer::Viewer& viewer, io::FrameData& frame, const FrameResult& result,
+                    const Pipeline& system) {
+  const auto start = std::chrono::steady_clock::now();
+  viewer.publish(frameViewOf(frame, result, system));
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+      .count();
+}
+
+void keepServing(const viewer::Viewer& viewer, const StopOnSignal& stop) {
+  if (stop.requested()) return;
+  std::printf("viewer: the run has ended; still serving %s until Ctrl-C\n", viewer.url().c_str());
+  std::fflush(stdout);
+  while (!stop.requested()) std::this_thread::sleep_for(std::chrono::milliseconds(100));
+}
+
+nlohmann::json viewerSummary(const viewer::Viewer& viewer, const std::vector<double>& handover_ms) {
+  std::vector<double> sorted = handover_ms;
+  std::sort(sorted.begin(), sorted.end());
+  const auto at = [&](double q) {
+    return sorted.empty() ? 0.0 : sorted[static_cast<std::size_t>(q * (sorted.size() - 1))];
+  };
+  return {{"url", viewer.url()},
+          {"frames_published", viewer.framesPublished()},
+          {"frames_dropped", viewer.framesDropped()},
+          {"handover_ms", {{"median", at(0.5)}, {"p99", at(0.99)}, {"max", at(1.0)}}}};
+}
+
+}  // namespace lumaslam::cli
