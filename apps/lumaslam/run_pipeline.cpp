@@ -1,6 +1,5 @@
 #include "run_pipeline.h"
 
-
 #include <algorithm>
 #include <cstdio>
 #include <fstream>
