@@ -8,6 +8,7 @@
 
 #include "lumaslam/core/error.h"
 #include "lumaslam/eval/evaluation.h"
+#include "lumaslam/eval/series_plot.h"
 #include "lumaslam/eval/svg_document.h"
 #include "lumaslam/eval/trajectory_plot.h"
 #include "test_eval_synthetic.h"
@@ -85,6 +86,50 @@ TEST(TrajectoryPlot, DrawsBothPanelsWithLabelsAndBreaksAtTrackingGaps) {
   writeEvaluationPlot(dir.path() / "new_dir" / "plot.svg", report);
   EXPECT_TRUE(std::filesystem::is_regular_file(dir.path() / "new_dir" / "plot.svg"));
   EXPECT_THROW(writeEvaluationPlot(path / "plot.svg", report), Error);
+}
+
+TEST(TrajectoryPlot, TopAndSideViewsAndErrorAlongTime) {
+  EXPECT_EQ(sidePlane({0, 1}), (std::array<int, 2>{0, 2}));
+  EXPECT_EQ(sidePlane({0, 2}), (std::array<int, 2>{0, 1}));
+  EXPECT_EQ(sidePlane({1, 2}), (std::array<int, 2>{1, 0}));
+  const Trajectory ground_truth = test::helix(300);
+  const EvaluationReport report =
+      evaluate(test::withPositionNoise(ground_truth, 0.02, 3), ground_truth, {});
+
+  const SvgDocument views = plotTrajectoryViews(report);
+  const std::string svg = views.element();
+  EXPECT_EQ(svg.rfind("<svg", 0), 0u);  // no XML declaration: for inline use
+  EXPECT_EQ(views.str(), "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n" + svg);
+  EXPECT_NE(svg.find(">Top view (x-y plane, aligned se3)<"), std::string::npos);
+  EXPECT_NE(svg.find(">Side view (x-z plane, aligned se3)<"), std::string::npos);
+  EXPECT_EQ(count(svg, "<polyline"), 4u);  // ground truth and estimate in each view
+  const std::string errors = plotErrorOverTime(report).element();
+  EXPECT_NE(errors.find(">ATE [m]<"), std::string::npos);
+  EXPECT_EQ(count(errors, "<polyline"), 1u);
+  EXPECT_THROW(plotTrajectoryViews(EvaluationReport{}), Error);
+}
+
+TEST(SeriesPlot, DrawsEverySeriesAndRefusesMismatchedSizes) {
+  SeriesPlot plot{"Total", "frame", "ms", {{"total", "#1f77b4", {0, 1, 2}, {5, 7, 6}}}};
+  const std::string svg = plotSeries(plot).element();
+  EXPECT_EQ(count(svg, "<polyline"), 1u);
+  EXPECT_NE(svg.find(">Total<"), std::string::npos);
+  EXPECT_NE(svg.find(">total<"), std::string::npos);
+  plot.series.front().y.pop_back();
+  EXPECT_THROW(plotSeries(plot), Error);
+  EXPECT_THROW(plotSeries(SeriesPlot{}), Error);
+}
+
+TEST(SeriesPlot, StateStripHasOneCellPerRunOfEqualStates) {
+  const std::vector<StripState> legend = {{"ok", "green"}, {"lost", "red"}};
+  const std::vector<double> x = {0, 1, 2, 3, 4, 5};
+  const std::string svg = plotStateStrip("State", "frame", x, {0, 0, 1, 1, 1, 0}, legend).element();
+  EXPECT_EQ(count(svg, R"(fill="green")"), 3u);  // two runs and the legend's square
+  EXPECT_EQ(count(svg, R"(fill="red")"), 2u);    // one run and the legend's square
+  EXPECT_NE(svg.find(">ok: 3<"), std::string::npos);
+  EXPECT_NE(svg.find(">lost: 3<"), std::string::npos);
+  EXPECT_THROW(plotStateStrip("State", "frame", x, {0, 2, 0, 0, 0, 0}, legend), Error);
+  EXPECT_THROW(plotStateStrip("State", "frame", x, {0}, legend), Error);
 }
 
 }  // namespace

@@ -87,8 +87,11 @@ void SvgDocument::text(Eigen::Vector2d at, std::string_view content, double size
 }
 
 std::string SvgDocument::str() const {
+  return "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n" + element();
+}
+
+std::string SvgDocument::element() const {
   std::string svg = fmt::format(
-      "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
       "<svg xmlns=\"http://www.w3.org/2000/svg\" version=\"1.1\" width=\"{0:.0f}\" "
       "height=\"{1:.0f}\" viewBox=\"0 0 {0:.0f} {1:.0f}\">\n"
       "<rect x=\"0\" y=\"0\" width=\"{0:.0f}\" height=\"{1:.0f}\" fill=\"white\"/>\n",

@@ -40,7 +40,9 @@ class SvgDocument {
             TextAnchor anchor = TextAnchor::Start, double rotate_deg = 0.0,
             std::string_view fill = "black");
 
-  std::string str() const;
+  std::string str() const;  // a standalone SVG file: XML declaration, then element()
+  // The <svg> element alone, e.g. to put inline into an HTML page.
+  std::string element() const;
   // Written as an io::OutputFile (complete or not at all); throws Error naming the path when
   // it cannot be written.
   void save(const std::filesystem::path& path) const;
