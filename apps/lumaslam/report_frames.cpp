@@ -1,0 +1,151 @@
+#include "report_frames.h"
+
+#include <algorithm>
+
+#include <fmt/format.h>
+#include <opencv2/features2d.hpp>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "lumaslam/core/error.h"
+#include "lumaslam/core/gray_image.h"
+#include "lumaslam/enhance/enhancer.h"
+#include "lumaslam/feature/orb_extractor.h"
+#include "lumaslam/io/dataset_reader.h"
+#include "lumaslam/io/settings.h"
+
+namespace lumaslam::cli {
+namespace {
+
+struct Pick {
+  std::string role;
+  std::size_t index = 0;
+};
+
+// First, middle and last tracked frame (timing.csv "state" ok); without any tracked frame,
+// the first and last frame read. Duplicates (a short run) are dropped.
+std::vector<Pick> pickFrames(const TimingTable& timing) {
+  const auto indices = timing.numbers("frame");
+  const auto states = timing.texts("state");
+  std::vector<std::size_t> tracked;
+  for (std::size_t i = 0; i < indices.size(); ++i) {
+    if (states[i] == "ok") tracked.push_back(static_cast<std::size_t>(indices[i]));
+  }
+  const bool any = !tracked.empty();
+  if (!any) {
+    for (const double index : indices) tracked.push_back(static_cast<std::size_t>(index));
+  }
+  if (tracked.empty()) return {};
+  std::vector<Pick> picks = {{any ? "first tracked" : "first (none tracked)", tracked.front()}};
+  if (any) picks.push_back({"middle tracked", tracked[tracked.size() / 2]});
+  picks.push_back({any ? "last tracked" : "last (none tracked)", tracked.back()});
+  std::vector<Pick> unique;
+  for (const Pick& pick : picks) {
+    const bool seen = std::any_of(unique.begin(), unique.end(),
+                                  [&](const Pick& p) { return p.index == pick.index; });
+    if (!seen) unique.push_back(pick);
+  }
+  return unique;
+}
+
+// As the pipeline chooses: the preset `run --enhance` gave (summary "enhance_preset") on its
+// own, else Enhancement.* of the settings.
+enhance::EnhancerParams enhancerParams(const nlohmann::json& summary,
+                                       const io::Settings& settings) {
+  if (summary.contains("enhance_preset") && summary["enhance_preset"].is_string()) {
+    return enhance::EnhancerParams::forPreset(summary["enhance_preset"].get<std::string>());
+  }
+  return settings.file ? enhance::EnhancerParams::fromSettings(*settings.file)
+                       : enhance::EnhancerParams{};
+}
+
+io::FrameData readFrame(const std::string& dataset, std::size_t index) {
+  io::ReaderOptions options;
+  options.first_frame = index;
+  options.max_frames = 1;
+  auto frame = io::openDataset(dataset, options)->next();
+  if (!frame) fail("{}: frame {} not found", dataset, index);
+  return std::move(*frame);
+}
+
+// The gray image tracking extracts ORB from, and its colour version to draw on.
+std::pair<cv::Mat, cv::Mat> asTracked(const cv::Mat& image, const enhance::EnhancerParams& params) {
+  if (params.preset == "off") return {toGray(image), image};
+  enhance::Enhancer enhancer(params);  // fresh: the run's online statistics are not kept
+  auto enhanced = enhancer.enhance(image);
+  return {enhanced.gray, enhanced.colour};
+}
+
+std::string keypointUri(const cv::Mat& colour, const std::vector<cv::KeyPoint>& keypoints) {
+  cv::Mat canvas;
+  cv::drawKeypoints(colour, keypoints, canvas, cv::Scalar(0, 255, 0));
+  return jpegDataUri(canvas);
+}
+
+SampleFrame sampleFrame(const Pick& pick, const std::string& dataset,
+                        const enhance::EnhancerParams& params,
+                        const feature::OrbExtractor& extractor) {
+  const io::FrameData frame = readFrame(dataset, pick.index);
+  const auto [gray, colour] = asTracked(frame.image, params);
+  const auto keypoints = extractor.extract(gray).keypoints;
+  return {pick.role,
+          frame.index,
+          frame.timestamp,
+          jpegDataUri(frame.image),
+          keypointUri(colour, keypoints),
+          keypoints.size()};
+}
+
+std::string base64(const std::vector<uchar>& bytes) {
+  static constexpr char kDigits[] =
+      "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  std::string text;
+  text.reserve((bytes.size() + 2) / 3 * 4);
+  for (std::size_t i = 0; i < bytes.size(); i += 3) {
+    const std::size_t n = std::min<std::size_t>(3, bytes.size() - i);
+    std::uint32_t block = bytes[i] << 16;
+    if (n > 1) block |= bytes[i + 1] << 8;
+    if (n > 2) block |= bytes[i + 2];
+    for (std::size_t k = 0; k < 4; ++k) {
+      text += k <= n ? kDigits[(block >> (18 - 6 * k)) & 63] : '=';
+    }
+  }
+  return text;
+}
+
+}  // namespace
+
+std::string jpegDataUri(const cv::Mat& image, int max_width) {
+  cv::Mat scaled = image;
+  if (image.cols > max_width) {
+    const double scale = static_cast<double>(max_width) / image.cols;
+    cv::resize(image, scaled, cv::Size(), scale, scale, cv::INTER_AREA);
+  }
+  if (scaled.depth() != CV_8U) scaled.convertTo(scaled, CV_8U);
+  std::vector<uchar> bytes;
+  if (!cv::imencode(".jpg", scaled, bytes, {cv::IMWRITE_JPEG_QUALITY, 85})) {
+    fail("cannot encode a {}x{} image as JPEG", scaled.cols, scaled.rows);
+  }
+  return "data:image/jpeg;base64," + base64(bytes);
+}
+
+SampleFrames loadSampleFrames(const nlohmann::json& summary, const TimingTable& timing) {
+  SampleFrames samples;
+  try {
+    const auto dataset = summary.at("dataset").get<std::string>();
+    const auto settings = io::loadSettings(summary.at("settings").get<std::string>());
+    const auto params = enhancerParams(summary, settings);
+    samples.enhancement = params.preset;
+    const feature::OrbExtractor extractor(settings.file
+                                              ? feature::OrbSettings::fromSettings(*settings.file)
+                                              : feature::OrbSettings{});
+    for (const Pick& pick : pickFrames(timing)) {
+      samples.frames.push_back(sampleFrame(pick, dataset, params, extractor));
+    }
+  } catch (const std::exception& e) {
+    samples.problem = e.what();
+  }
+  return samples;
+}
+
+}  // namespace lumaslam::cli

@@ -1,0 +1,85 @@
+#include "run_report.h"
+
+#include <fmt/format.h>
+
+#include "html_page.h"
+#include "lumaslam/io/output_file.h"
+#include "report_sections.h"
+#include "run_folder.h"
+
+namespace lumaslam::cli {
+namespace {
+
+void save(const HtmlPage& page, const std::filesystem::path& out) {
+  io::OutputFile file(out);
+  file.stream() << page.str();
+  file.commit();
+}
+
+std::string titleOf(const nlohmann::json& summary) {
+  return "lumaslam run: " + summary.value("dataset", std::string("(dataset not recorded)"));
+}
+
+SampleFrames samplesOf(const RunFolder& run) {
+  if (!run.timing) return {{}, {}, "no frame list: " + run.timing_problem};
+  return loadSampleFrames(run.summary, *run.timing);
+}
+
+std::vector<Cell> repeatRow(const nlohmann::json& entry, std::size_t k) {
+  const std::string run = fmt::format("run_{}", k);
+  const auto number_or_blank = [&](const char* key, int decimals) -> Cell {
+    if (!entry.contains(key) || !entry[key].is_number()) return {"", run + "." + key, {}};
+    return Cell::number(entry[key].get<double>(), run + "." + key, decimals);
+  };
+  return {{run, "", std::nullopt},
+          Cell::count(entry.value("tracked", 0LL), run + ".tracked"),
+          number_or_blank("ms_per_frame_median", 3),
+          number_or_blank("ate_rmse", 6)};
+}
+
+std::string repeatLinks(std::size_t runs) {
+  std::string html = "<ul>\n";
+  for (std::size_t k = 1; k <= runs; ++k) {
+    html += fmt::format("<li><a href=\"run_{0}/report.html\">run_{0}</a></li>\n", k);
+  }
+  return html + "</ul>\n";
+}
+
+}  // namespace
+
+void writeRunReport(const std::filesystem::path& run_dir, const std::filesystem::path& out) {
+  const RunFolder run = readRunFolder(run_dir);
+  HtmlPage page(titleOf(run.summary));
+  page.section("run", "Run", runSection(run.summary));
+  page.section("evaluation", "Accuracy against ground truth",
+               evaluationSection(run.summary, reevaluate(run)));
+  page.section("tracking", "Tracking", trackingSection(run));
+  page.section("timing", "Timing", timingSection(run));
+  page.section("frames", "Sample frames", framesSection(samplesOf(run)));
+  save(page, out);
+}
+
+void writeRepeatReport(const std::filesystem::path& dir, const std::filesystem::path& out) {
+  const nlohmann::json repeat = readRepeatability(dir);
+  const auto& runs = repeat["runs"];
+  std::vector<std::vector<Cell>> rows;
+  for (std::size_t k = 1; k <= runs.size(); ++k) {
+    writeRunReport(dir / fmt::format("run_{}", k), dir / fmt::format("run_{}", k) / "report.html");
+    rows.push_back(repeatRow(runs[k - 1], k));
+  }
+  HtmlPage page("lumaslam run --repeat: " + repeat.value("dataset", std::string("?")));
+  page.section("repeat", "Runs",
+               htmlTable({"run", "tracked", "ms/frame median", "ATE rmse [m]"}, rows) +
+                   "<p>Each run's own report:</p>\n" + repeatLinks(runs.size()));
+  save(page, out);
+}
+
+void writeReport(const std::filesystem::path& dir, const std::filesystem::path& out) {
+  if (isRepeatFolder(dir)) {
+    writeRepeatReport(dir, out);
+  } else {
+    writeRunReport(dir, out);
+  }
+}
+
+}  // namespace lumaslam::cli
