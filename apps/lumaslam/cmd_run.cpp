@@ -1,13 +1,29 @@
+#include <cstdio>
 #include <memory>
+
+#include <spdlog/spdlog.h>
 
 #include "cli_checks.h"
 #include "command_registry.h"
 #include "lumaslam/core/error.h"
 #include "run_pipeline.h"
 #include "run_repeat.h"
+#include "run_report.h"
 
 namespace lumaslam::cli {
 namespace {
+
+// After every result (manifest.json included), so a report that fails costs no result.
+int reportAfterRun(const std::filesystem::path& out, int code) {
+  try {
+    writeReport(out, out / "report.html");
+    std::printf("report in %s\n", (out / "report.html").string().c_str());
+  } catch (const std::exception& e) {
+    spdlog::error("report: {}", e.what());
+    return code == 0 ? 1 : code;
+  }
+  return code;
+}
 
 const bool registered = registerCommand(
     "run", "Run SLAM on a dataset; write trajectory, keyframes, timing and summary",
@@ -79,7 +95,10 @@ const bool registered = registerCommand(
       cmd.add_option("--repeat", *repeats,
                      "Run N times into OUT/run_K and report the min/median/max spread")
           ->check(wholeNumber(1, 1000));
-      return [options, max_frames, enhance, detector, repeats, vocabulary, on_bad_frame] {
+      auto report = std::make_shared<bool>(false);
+      cmd.add_flag("--report", *report,
+                   "At the end, write OUT/report.html (`lumaslam report OUT`, docs/report.md)");
+      return [options, max_frames, enhance, detector, repeats, vocabulary, on_bad_frame, report] {
         options->on_bad_frame =
             *on_bad_frame == "stop" ? RunOptions::BadFrame::Stop : RunOptions::BadFrame::Skip;
         if (*max_frames > 0) options->max_frames = *max_frames;
@@ -98,7 +117,8 @@ const bool registered = registerCommand(
         if (options->save_map && *repeats > 1) {
           fail("--save-map with --repeat: every run would write the same file");
         }
-        return *repeats > 1 ? runRepeated(*options, *repeats) : runPipeline(*options);
+        const int code = *repeats > 1 ? runRepeated(*options, *repeats) : runPipeline(*options);
+        return *report ? reportAfterRun(options->out, code) : code;
       };
     });
 

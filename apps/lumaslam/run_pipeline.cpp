@@ -184,6 +184,9 @@ nlohmann::json summaryOf(const RunOptions& options, const std::filesystem::path&
                             {"maps", std::move(maps)},
                             {"map_points", system.mapPointCount()},
                             {"ms_per_frame", {{"mean", mean}, {"median", median(loop.totals)}}}};
+  // The --enhance override, null when Enhancement.preset of the settings applies.
+  summary["enhance_preset"] = options.enhance_preset ? nlohmann::json(*options.enhance_preset)
+                                                     : nlohmann::json(nullptr);
   summary["detector"] = {{"name", system.detectorDescription()},
                          {"dropped_features_per_frame", loop.dropped_sum / frames},
                          {"wait_ms_per_frame", loop.wait_sum / frames}};
@@ -245,7 +248,8 @@ void evaluateAgainstGroundTruth(io::DatasetReader& reader, const io::Settings& s
 void removeEarlierOutputs(const std::filesystem::path& out) {
   std::error_code ec;
   for (const char* name : {"trajectory.txt", "keyframes.txt", "timing.csv", "summary.json",
-                           "evaluation.svg", "repeatability.json", "manifest.json"}) {
+                           "evaluation.svg", "repeatability.json", "manifest.json",
+                           "report.html"}) {
     if (std::filesystem::is_regular_file(out / name, ec)) std::filesystem::remove(out / name, ec);
   }
   for (const auto& entry : std::filesystem::directory_iterator(out, ec)) {

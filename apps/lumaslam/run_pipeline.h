@@ -36,7 +36,8 @@ struct RunOptions {
 };
 
 // Removes the files an earlier run left in `out` (trajectory*.txt, keyframes.txt, timing.csv,
-// summary.json, evaluation.svg, repeatability.json): a folder holds one run's results.
+// summary.json, evaluation.svg, repeatability.json, manifest.json, report.html): a folder
+// holds one run's results.
 void removeEarlierOutputs(const std::filesystem::path& out);
 
 // Returns the process exit code: 0, 1 when stopped at a bad frame, 128 + signal when stopped

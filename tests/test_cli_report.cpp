@@ -1,0 +1,309 @@
+// `lumaslam run --report` and `lumaslam report` on a short synthetic sequence: the HTML is
+// self-contained, its numbers are summary.json's, its sample frames decode, and it opens in
+// headless Chromium without console errors; a folder without a run is a clear error.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <memory>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+#include <opencv2/imgcodecs.hpp>
+
+#include "test_cli.h"
+
+namespace {
+
+using lumaslam::test::readRunSummary;
+using lumaslam::test::runCli;
+using lumaslam::test::TempDir;
+
+std::string readText(const std::filesystem::path& file) {
+  std::ifstream in(file);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+// The text of the element carrying data-key="KEY"; empty when there is none. (Found without
+// std::regex: its recursion overflows the stack on a page of base64 images.)
+std::string cellText(const std::string& html, const std::string& key) {
+  const auto at = html.find("data-key=\"" + key + "\"");
+  if (at == std::string::npos) return {};
+  const auto begin = html.find('>', at) + 1;
+  return html.substr(begin, html.find('<', begin) - begin);
+}
+
+// The values of every ATTRIBUTE="..." in the page.
+std::vector<std::string> attributeValues(const std::string& html, const std::string& attribute) {
+  std::vector<std::string> values;
+  const std::string opening = " " + attribute + "=\"";
+  for (auto at = html.find(opening); at != std::string::npos; at = html.find(opening, at + 1)) {
+    const auto begin = at + opening.size();
+    values.push_back(html.substr(begin, html.find('"', begin) - begin));
+  }
+  return values;
+}
+
+std::size_t occurrences(const std::string& text, const std::string& what) {
+  std::size_t n = 0;
+  for (auto at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++n;
+  return n;
+}
+
+std::string sixDecimals(double value) {
+  char text[64];
+  std::snprintf(text, sizeof text, "%.6f", value);
+  return text;
+}
+
+std::vector<unsigned char> decodeBase64(const std::string& text) {
+  static const std::string digits =
+      "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  std::vector<unsigned char> bytes;
+  unsigned int block = 0;
+  int bits = 0;
+  for (const char c : text) {
+    if (c == '=') break;
+    const auto value = digits.find(c);
+    if (value == std::string::npos) return {};
+    block = (block << 6) | static_cast<unsigned int>(value);
+    bits += 6;
+    if (bits >= 8) {
+      bits -= 8;
+      bytes.push_back(static_cast<unsigned char>((block >> bits) & 0xFF));
+    }
+  }
+  return bytes;
+}
+
+std::vector<std::string> imageSources(const std::string& html) {
+  std::vector<std::string> sources;
+  for (auto at = html.find("<img "); at != std::string::npos; at = html.find("<img ", at + 1)) {
+    const auto end = html.find('>', at);
+    const auto src = attributeValues(html.substr(at, end - at), "src");
+    if (!src.empty()) sources.push_back(src.front());
+  }
+  return sources;
+}
+
+// One synthetic run (60 frames, with ground truth), reported by `run --report`.
+class CliReport : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    dir_ = std::make_unique<TempDir>("cli_report");
+    const auto synth =
+        runCli("synth " + data().string() + " --preset xyz-rgbd --frames 60 --seed 3");
+    ASSERT_EQ(synth.exit_code, 0) << synth.output;
+    const auto run = runCli("run --dataset tum:" + data().string() +
+                            " --sequential --report --out " + out().string());
+    ASSERT_EQ(run.exit_code, 0) << run.output;
+  }
+  static void TearDownTestSuite() { dir_.reset(); }
+
+  static std::filesystem::path data() { return dir_->path() / "data"; }
+  static std::filesystem::path out() { return dir_->path() / "out"; }
+
+  static std::unique_ptr<TempDir> dir_;
+};
+
+std::unique_ptr<TempDir> CliReport::dir_;
+
+TEST_F(CliReport, RunWritesOneSelfContainedPage) {
+  ASSERT_TRUE(std::filesystem::exists(out() / "report.html"));
+  const std::string html = readText(out() / "report.html");
+  EXPECT_NE(html.find("<!DOCTYPE html>"), std::string::npos);
+  EXPECT_EQ(html.find("<script"), std::string::npos);
+  EXPECT_EQ(html.find("<link"), std::string::npos);
+  EXPECT_EQ(html.find("url("), std::string::npos);
+  for (const char* attribute : {"src", "href"}) {
+    for (const std::string& value : attributeValues(html, attribute)) {
+      EXPECT_TRUE(value.starts_with("data:image/")) << attribute << "=" << value.substr(0, 60);
+    }
+  }
+  // The only http:// is the SVG namespace name (never fetched).
+  EXPECT_EQ(occurrences(html, "http://"),
+            occurrences(html, "xmlns=\"http://www.w3.org/2000/svg\""));
+  EXPECT_EQ(occurrences(html, "<svg"), 4U);  // trajectory views, ATE, timeline, timing
+  EXPECT_EQ(html.find("https://"), std::string::npos);
+  for (const char* section : {"id=\"run\"", "id=\"evaluation\"", "id=\"tracking\"", "id=\"timing\"",
+                              "id=\"frames\"", "id=\"trajectory-views\"", "id=\"ate-over-time\"",
+                              "id=\"timing-plot\"", "id=\"tracking-timeline\""}) {
+    EXPECT_NE(html.find(section), std::string::npos) << section;
+  }
+  EXPECT_EQ(html.find("class=\"note\""), std::string::npos) << "a section says something failed";
+}
+
+TEST_F(CliReport, NumbersAreTheSummarys) {
+  const std::string html = readText(out() / "report.html");
+  const auto summary = readRunSummary(out());
+  ASSERT_TRUE(summary.contains("evaluation"));
+  const auto& evaluation = summary["evaluation"];
+  for (const char* stat : {"rmse", "mean", "median", "std", "min", "max"}) {
+    EXPECT_EQ(cellText(html, std::string("ate.") + stat),
+              sixDecimals(evaluation["ate"][stat].get<double>()))
+        << stat;
+    EXPECT_EQ(cellText(html, std::string("rpe.trans.") + stat),
+              sixDecimals(evaluation["rpe"]["trans"][stat].get<double>()))
+        << stat;
+  }
+  EXPECT_EQ(cellText(html, "ate.count"), std::to_string(evaluation["ate"]["count"].get<int>()));
+  const auto tracked = std::to_string(summary["tracked"].get<int>());
+  const auto lost = std::to_string(summary["lost"].get<int>());
+  EXPECT_EQ(cellText(html, "tracked"), tracked);
+  EXPECT_EQ(cellText(html, "lost"), lost);
+  EXPECT_EQ(cellText(html, "timeline.tracked"), tracked);  // counted from timing.csv
+  EXPECT_EQ(cellText(html, "timeline.lost"), lost);
+  EXPECT_EQ(cellText(html, "status"), summary["status"].get<std::string>());
+  EXPECT_EQ(cellText(html, "keyframes"), std::to_string(summary["keyframes"].get<int>()));
+}
+
+TEST_F(CliReport, SampleFramesAreInlineImages) {
+  const auto sources = imageSources(readText(out() / "report.html"));
+  ASSERT_EQ(sources.size(), 6U);  // first, middle, last tracked frame: raw and enhanced
+  for (const std::string& source : sources) {
+    const std::string prefix = "data:image/jpeg;base64,";
+    ASSERT_EQ(source.rfind(prefix, 0), 0U) << source.substr(0, 40);
+    const auto bytes = decodeBase64(source.substr(prefix.size()));
+    const cv::Mat image = cv::imdecode(bytes, cv::IMREAD_UNCHANGED);
+    ASSERT_FALSE(image.empty());
+    EXPECT_LE(image.cols, 480);
+    EXPECT_GT(image.rows, 0);
+  }
+}
+
+TEST_F(CliReport, ReportCommandWritesTheSamePageElsewhere) {
+  const auto other = dir_->path() / "elsewhere" / "page.html";
+  const auto report = runCli("report " + out().string() + " --out " + other.string());
+  ASSERT_EQ(report.exit_code, 0) << report.output;
+  EXPECT_EQ(readText(other), readText(out() / "report.html"));
+}
+
+TEST_F(CliReport, AGoneDatasetCostsOnlyTheFramesAndPlots) {
+  const auto copy = dir_->path() / "moved";
+  std::filesystem::create_directories(copy);
+  for (const char* name : {"trajectory.txt", "timing.csv"}) {
+    std::filesystem::copy_file(out() / name, copy / name);
+  }
+  auto summary = readRunSummary(out());
+  summary["dataset"] = "tum:" + (dir_->path() / "gone").string();
+  std::ofstream(copy / "summary.json") << summary.dump(2);
+  const auto report = runCli("report " + copy.string());
+  ASSERT_EQ(report.exit_code, 0) << report.output;
+  const std::string html = readText(copy / "report.html");
+  EXPECT_TRUE(imageSources(html).empty());
+  EXPECT_NE(html.find("Sample frames unavailable"), std::string::npos);
+  EXPECT_NE(html.find("gone"), std::string::npos);
+  EXPECT_EQ(cellText(html, "ate.rmse"),
+            sixDecimals(summary["evaluation"]["ate"]["rmse"].get<double>()));
+}
+
+TEST(CliReportErrors, AFolderWithoutARunIsAClearError) {
+  TempDir dir("cli_report_errors");
+  const auto missing = runCli("report " + (dir.path() / "nothing").string());
+  EXPECT_NE(missing.exit_code, 0);
+  EXPECT_NE(missing.output.find("nothing: no such run folder"), std::string::npos)
+      << missing.output;
+
+  const auto empty = runCli("report " + dir.path().string());
+  EXPECT_NE(empty.exit_code, 0);
+  EXPECT_NE(empty.output.find("summary.json: run summary not found"), std::string::npos)
+      << empty.output;
+
+  std::ofstream(dir.path() / "summary.json") << "{ \"status\": \"complete\", \"frames\": ";
+  const auto broken = runCli("report " + dir.path().string());
+  EXPECT_NE(broken.exit_code, 0);
+  EXPECT_NE(broken.output.find("summary.json: malformed run summary (not JSON)"), std::string::npos)
+      << broken.output;
+
+  std::ofstream(dir.path() / "summary.json") << R"({"status": "complete", "frames": 3})";
+  const auto incomplete = runCli("report " + dir.path().string());
+  EXPECT_NE(incomplete.exit_code, 0);
+  EXPECT_NE(incomplete.output.find("summary.json: malformed run summary: no \"tracked\" count"),
+            std::string::npos)
+      << incomplete.output;
+  EXPECT_FALSE(std::filesystem::exists(dir.path() / "report.html"));
+}
+
+TEST(CliReportRepeat, ReportsEachRunAndLinksThem) {
+  TempDir dir("cli_report_repeat");
+  const auto data = dir.path() / "data";
+  const auto out = dir.path() / "out";
+  ASSERT_EQ(runCli("synth " + data.string() + " --preset xyz-rgbd --frames 30 --seed 4").exit_code,
+            0);
+  const auto run =
+      runCli("run --dataset tum:" + data.string() + " --repeat 2 --out " + out.string());
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  const auto report = runCli("report " + out.string());
+  ASSERT_EQ(report.exit_code, 0) << report.output;
+  const std::string html = readText(out / "report.html");
+  for (int k = 1; k <= 2; ++k) {
+    const std::string run_k = "run_" + std::to_string(k);
+    EXPECT_NE(html.find("href=\"" + run_k + "/report.html\""), std::string::npos) << run_k;
+    EXPECT_EQ(cellText(html, run_k + ".tracked"),
+              std::to_string(readRunSummary(out / run_k)["tracked"].get<int>()));
+    EXPECT_FALSE(imageSources(readText(out / run_k / "report.html")).empty()) << run_k;
+  }
+}
+
+// Headless Chromium on `page`: the DOM it built and what it logged (console messages are
+// logged as ":CONSOLE" lines at --enable-logging=stderr).
+struct BrowserResult {
+  int exit_code = -1;
+  std::string dom;
+  std::vector<std::string> console;
+};
+
+BrowserResult openInChromium(const std::filesystem::path& page, const std::filesystem::path& work) {
+  const auto dom = work / "dom.html";
+  const auto log = work / "chromium.log";
+  const std::string command =
+      "timeout 120 chromium --headless=new --no-sandbox --disable-gpu --enable-logging=stderr "
+      "--v=0 --user-data-dir=" +
+      (work / "profile").string() + " --dump-dom file://" + page.string() + " > " + dom.string() +
+      " 2> " + log.string();
+  BrowserResult result;
+  const int status = std::system(command.c_str());
+  result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  result.dom = readText(dom);
+  std::istringstream lines(readText(log));
+  for (std::string line; std::getline(lines, line);) {
+    if (line.find(":CONSOLE") != std::string::npos || line.find("Uncaught") != std::string::npos) {
+      result.console.push_back(line);
+    }
+  }
+  return result;
+}
+
+bool haveChromium() {
+  return std::filesystem::exists("/usr/bin/chromium");
+}
+
+TEST_F(CliReport, OpensInHeadlessChromiumWithoutConsoleErrors) {
+  if (!haveChromium()) GTEST_SKIP() << "no /usr/bin/chromium (scripts/install-deps.sh)";
+  const auto browser = openInChromium(out() / "report.html", dir_->path());
+  ASSERT_EQ(browser.exit_code, 0);
+  EXPECT_TRUE(browser.console.empty()) << browser.console.front();
+  for (const char* element :
+       {"id=\"evaluation\"", "data-key=\"ate.rmse\"", "id=\"frames\"", "<svg", "<img"}) {
+    EXPECT_NE(browser.dom.find(element), std::string::npos) << element;
+  }
+}
+
+// The check above can fail: a page with a script error is caught.
+TEST(CliReportBrowser, TheConsoleCheckCatchesAScriptError) {
+  if (!haveChromium()) GTEST_SKIP() << "no /usr/bin/chromium (scripts/install-deps.sh)";
+  TempDir dir("cli_report_browser");
+  std::ofstream(dir.path() / "bad.html")
+      << "<!DOCTYPE html><html><body><p>x</p><script>notDefined();</script></body></html>";
+  const auto browser = openInChromium(dir.path() / "bad.html", dir.path());
+  ASSERT_EQ(browser.exit_code, 0);
+  ASSERT_FALSE(browser.console.empty());
+  EXPECT_NE(browser.console.front().find("Uncaught ReferenceError"), std::string::npos);
+}
+
+}  // namespace
