@@ -13,7 +13,7 @@ packages=(
   libcereal-dev          # map files
   pybind11-dev python3-dev python3-numpy  # the Python module (python/)
   libcpp-httplib-dev libjs-three  # the live viewer (docs/viewer.md): HTTP server, 3D drawing
-  chromium               # browser tests of the viewer (tests/test_cli_viewer.cpp)
+  chromium               # browser tests: the viewer's page and `lumaslam report` pages, headless
 )
 
 missing=()
