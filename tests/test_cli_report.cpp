@@ -202,6 +202,23 @@ TEST_F(CliReport, AGoneDatasetCostsOnlyTheFramesAndPlots) {
             sixDecimals(summary["evaluation"]["ate"]["rmse"].get<double>()));
 }
 
+TEST_F(CliReport, PlotsOfAnotherEvaluationThanTheSummarysAreSaidSo) {
+  const auto copy = dir_->path() / "edited";
+  std::filesystem::create_directories(copy);
+  for (const char* name : {"trajectory.txt", "timing.csv"}) {
+    std::filesystem::copy_file(out() / name, copy / name);
+  }
+  auto summary = readRunSummary(out());
+  summary["evaluation"]["ate"]["rmse"] = 1.0;
+  std::ofstream(copy / "summary.json") << summary.dump(2);
+  const auto report = runCli("report " + copy.string());
+  ASSERT_EQ(report.exit_code, 0) << report.output;
+  const std::string html = readText(copy / "report.html");
+  EXPECT_EQ(cellText(html, "ate.rmse"), "1.000000");  // the summary's, as it says
+  EXPECT_NE(html.find("not summary.json's 1.000000 m"), std::string::npos);
+  EXPECT_NE(html.find("id=\"trajectory-views\""), std::string::npos);
+}
+
 TEST(CliReportErrors, AFolderWithoutARunIsAClearError) {
   TempDir dir("cli_report_errors");
   const auto missing = runCli("report " + (dir.path() / "nothing").string());

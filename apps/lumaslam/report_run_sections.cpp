@@ -1,4 +1,7 @@
 // runSection and evaluationSection of report_sections.h.
+#include <algorithm>
+#include <cmath>
+
 #include <fmt/format.h>
 
 #include "html_page.h"
@@ -84,6 +87,18 @@ std::string plots(const Reevaluation& again) {
          "<figcaption>ATE of every matched pose</figcaption></figure>\n";
 }
 
+// Said when the plots' evaluation is not the one summary.json holds.
+std::string consistencyNote(const nlohmann::json& evaluation, const Reevaluation& again) {
+  if (!again.report) return {};
+  const double recorded = evaluation.value("ate", nlohmann::json::object()).value("rmse", 0.0);
+  const double recomputed = again.report->ate.stats.rmse;
+  if (std::abs(recorded - recomputed) <= 1e-6 * std::max(1e-3, std::abs(recorded))) return {};
+  return htmlNote(fmt::format(
+      "The plots are of trajectory.txt evaluated again, with ATE rmse {:.6f} m, not "
+      "summary.json's {:.6f} m: trajectory.txt or the ground truth changed after the run.",
+      recomputed, recorded));
+}
+
 }  // namespace
 
 std::string runSection(const nlohmann::json& summary) {
@@ -108,7 +123,8 @@ std::string evaluationSection(const nlohmann::json& summary, const Reevaluation&
         "run tracked fewer than 3 frames.");
   }
   const auto& evaluation = summary["evaluation"];
-  return statsTable(evaluation) + alignmentLine(evaluation) + plots(again);
+  return statsTable(evaluation) + alignmentLine(evaluation) + consistencyNote(evaluation, again) +
+         plots(again);
 }
 
 }  // namespace lumaslam::cli
