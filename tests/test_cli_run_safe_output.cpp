@@ -162,11 +162,13 @@ TEST_F(CliRunSafeOutput, AnEarlierRunsFilesDoNotSurviveANewRun) {
   std::filesystem::create_directories(out_);
   std::ofstream(out_ / "trajectory_map7.txt") << "# stale\n1 0 0 0 0 0 0 1\n";
   std::ofstream(out_ / "evaluation.svg") << "<svg/>";
+  std::ofstream(out_ / "report.html") << "<!DOCTYPE html>";  // `lumaslam report` of that run
   std::filesystem::remove(data_ / "groundtruth.txt");  // nothing to evaluate: no new plot
   const auto result = run("--max-frames 5");
   ASSERT_EQ(result.exit_code, 0) << result.output;
   EXPECT_FALSE(std::filesystem::exists(out_ / "trajectory_map7.txt"));
   EXPECT_FALSE(std::filesystem::exists(out_ / "evaluation.svg"));
+  EXPECT_FALSE(std::filesystem::exists(out_ / "report.html"));
   EXPECT_TRUE(std::filesystem::exists(out_ / "summary.json"));
 }
 
