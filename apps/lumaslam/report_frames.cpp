@@ -17,6 +17,8 @@
 namespace lumaslam::cli {
 namespace {
 
+constexpr int kMaxWidth = 480;
+
 struct Pick {
   std::string role;
   std::size_t index = 0;
@@ -76,9 +78,14 @@ std::pair<cv::Mat, cv::Mat> asTracked(const cv::Mat& image, const enhance::Enhan
   return {enhanced.gray, enhanced.colour};
 }
 
-std::string keypointUri(const cv::Mat& colour, const std::vector<cv::KeyPoint>& keypoints) {
+// Drawn after the downscale, so that the marks keep their size on a wide image.
+std::string keypointUri(const cv::Mat& colour, std::vector<cv::KeyPoint> keypoints) {
+  const double scale = std::min(1.0, static_cast<double>(kMaxWidth) / colour.cols);
+  cv::Mat scaled = colour;
+  if (scale < 1.0) cv::resize(colour, scaled, cv::Size(), scale, scale, cv::INTER_AREA);
+  for (cv::KeyPoint& keypoint : keypoints) keypoint.pt *= static_cast<float>(scale);
   cv::Mat canvas;
-  cv::drawKeypoints(colour, keypoints, canvas, cv::Scalar(0, 255, 0));
+  cv::drawKeypoints(scaled, keypoints, canvas, cv::Scalar(0, 255, 0));
   return jpegDataUri(canvas);
 }
 
@@ -91,7 +98,7 @@ SampleFrame sampleFrame(const Pick& pick, const std::string& dataset,
   return {pick.role,
           frame.index,
           frame.timestamp,
-          jpegDataUri(frame.image),
+          jpegDataUri(frame.image, kMaxWidth),
           keypointUri(colour, keypoints),
           keypoints.size()};
 }
