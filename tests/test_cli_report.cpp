@@ -7,6 +7,7 @@
 #include <cstdlib>
 #include <fstream>
 #include <memory>
+#include <regex>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -217,6 +218,32 @@ TEST_F(CliReport, PlotsOfAnotherEvaluationThanTheSummarysAreSaidSo) {
   EXPECT_EQ(cellText(html, "ate.rmse"), "1.000000");  // the summary's, as it says
   EXPECT_NE(html.find("not summary.json's 1.000000 m"), std::string::npos);
   EXPECT_NE(html.find("id=\"trajectory-views\""), std::string::npos);
+}
+
+// timing.csv as a run with a second map would write it: the report draws which frames each
+// map holds (no such strip for the one-map run above).
+TEST_F(CliReport, ARunWithSeveralMapsShowsTheMapOfEachFrame) {
+  EXPECT_EQ(readText(out() / "report.html").find("id=\"map-timeline\""), std::string::npos);
+  const auto copy = dir_->path() / "two_maps";
+  std::filesystem::create_directories(copy);
+  std::filesystem::copy_file(out() / "trajectory.txt", copy / "trajectory.txt");
+  std::filesystem::copy_file(out() / "summary.json", copy / "summary.json");
+  std::ifstream timing(out() / "timing.csv");
+  std::ofstream edited(copy / "timing.csv");
+  std::string line;
+  std::getline(timing, line);
+  edited << line << '\n';
+  const std::regex map_field("^((?:[^,]*,){13})0,");  // the 14th column, "map"
+  for (int row = 0; std::getline(timing, line); ++row) {
+    edited << (row < 40 ? line : std::regex_replace(line, map_field, "$013,")) << '\n';
+  }
+  edited.close();
+  const auto report = runCli("report " + copy.string());
+  ASSERT_EQ(report.exit_code, 0) << report.output;
+  const std::string html = readText(copy / "report.html");
+  EXPECT_NE(html.find("id=\"map-timeline\""), std::string::npos);
+  EXPECT_NE(html.find(">map 0: 40<"), std::string::npos);
+  EXPECT_NE(html.find(">map 3: 20<"), std::string::npos);
 }
 
 TEST(CliReportErrors, AFolderWithoutARunIsAClearError) {

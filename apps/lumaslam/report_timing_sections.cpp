@@ -1,6 +1,7 @@
 // timingSection, trackingSection and framesSection of report_sections.h.
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 
 #include <fmt/format.h>
 
@@ -46,6 +47,30 @@ int stateIndex(const std::string& state) {
 const std::vector<eval::StripState> kStates = {
     {"ok", "#2ca02c"}, {"lost", "#d62728"}, {"not initialized / other", "#bbbbbb"}};
 
+// The map of every frame (timing.csv "map", empty when lost) when the run made more than one:
+// where the atlas started new maps and which frames each holds. Empty otherwise.
+std::string mapStrip(const TimingTable& timing, const std::vector<double>& frames) {
+  if (!timing.has("map")) return {};
+  static const char* const kPalette[] = {"#1f77b4", "#ff7f0e", "#9467bd", "#8c564b",
+                                         "#e377c2", "#17becf", "#bcbd22", "#7f7f7f"};
+  std::vector<eval::StripState> legend = {{"lost", "#ffffff"}};
+  std::vector<int> states;
+  for (const std::string& map : timing.texts("map")) {
+    const std::string label = map.empty() ? "lost" : "map " + map;
+    auto at = std::find_if(legend.begin(), legend.end(),
+                           [&](const eval::StripState& entry) { return entry.label == label; });
+    if (at == legend.end()) {
+      legend.push_back({label, kPalette[(legend.size() - 1) % std::size(kPalette)]});
+      at = legend.end() - 1;
+    }
+    states.push_back(static_cast<int>(at - legend.begin()));
+  }
+  if (legend.size() <= 2) return {};  // one map (and maybe lost frames): the strip above
+  return "<figure id=\"map-timeline\">" +
+         eval::plotStateStrip("Map of each frame", "frame", frames, states, legend).element() +
+         "</figure>\n";
+}
+
 }  // namespace
 
 std::string timingSection(const RunFolder& run) {
@@ -82,7 +107,7 @@ std::string trackingSection(const RunFolder& run) {
     return counts + "<figure id=\"tracking-timeline\">" +
            eval::plotStateStrip("Tracking state per frame", "frame", frames, states, kStates)
                .element() +
-           "</figure>\n";
+           "</figure>\n" + mapStrip(*run.timing, frames);
   } catch (const std::exception& e) {
     return htmlNote(std::string("No tracking timeline: ") + e.what());
   }
