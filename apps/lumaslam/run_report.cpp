@@ -37,10 +37,15 @@ std::vector<Cell> repeatRow(const nlohmann::json& entry, std::size_t k) {
           number_or_blank("ate_rmse", 6)};
 }
 
-std::string repeatLinks(std::size_t runs) {
+// Links to each run's report, relative to the page at `out` (wherever --out put it).
+std::string repeatLinks(const std::filesystem::path& dir, const std::filesystem::path& out,
+                        std::size_t runs) {
+  const auto from = std::filesystem::absolute(out).parent_path().lexically_normal();
   std::string html = "<ul>\n";
   for (std::size_t k = 1; k <= runs; ++k) {
-    html += fmt::format("<li><a href=\"run_{0}/report.html\">run_{0}</a></li>\n", k);
+    const auto target = std::filesystem::absolute(dir / fmt::format("run_{}", k) / "report.html");
+    html += fmt::format("<li><a href=\"{}\">run_{}</a></li>\n",
+                        escapeHtml(target.lexically_normal().lexically_relative(from).string()), k);
   }
   return html + "</ul>\n";
 }
@@ -70,7 +75,7 @@ void writeRepeatReport(const std::filesystem::path& dir, const std::filesystem::
   HtmlPage page("lumaslam run --repeat: " + repeat.value("dataset", std::string("?")));
   page.section("repeat", "Runs",
                htmlTable({"run", "tracked", "ms/frame median", "ATE rmse [m]"}, rows) +
-                   "<p>Each run's own report:</p>\n" + repeatLinks(runs.size()));
+                   "<p>Each run's own report:</p>\n" + repeatLinks(dir, out, runs.size()));
   save(page, out);
 }
 
