@@ -348,37 +348,5 @@ TEST(OrbExtractor, RejectsBadImagesAndMasks) {
   expectErrorMentioning([&] { extractor.extract(gray, cv::Mat(480, 640, CV_32FC1)); }, "mask");
 }
 
-TEST(OrbSettings, ReadsOrbSlamKeysAndNamesTheFileOnBadValues) {
-  const auto settings = core::SettingsFile::fromString(
-      "%YAML:1.0\nORBextractor.nFeatures: 1500\nORBextractor.scaleFactor: 1.25\n"
-      "ORBextractor.nLevels: 6\nORBextractor.iniThFAST: 18\nORBextractor.minThFAST: 5\n",
-      "orb.yaml");
-  const OrbSettings orb = OrbSettings::fromSettings(settings);
-  EXPECT_EQ(orb.nFeatures, 1500);
-  EXPECT_FLOAT_EQ(orb.scaleFactor, 1.25f);
-  EXPECT_EQ(orb.nLevels, 6);
-  EXPECT_EQ(orb.iniThFAST, 18);
-  EXPECT_EQ(orb.minThFAST, 5);
-  EXPECT_EQ(
-      OrbSettings::fromSettings(core::SettingsFile::fromString("%YAML:1.0\nx: 1\n")).nFeatures,
-      1000);
-
-  expectErrorMentioning(
-      [] {
-        OrbSettings::fromSettings(core::SettingsFile::fromString(
-            "%YAML:1.0\nORBextractor.scaleFactor: 0.8\n", "bad.yaml"));
-      },
-      "bad.yaml: ORBextractor.scaleFactor");
-  expectErrorMentioning(
-      [] {
-        OrbSettings::fromSettings(core::SettingsFile::fromString(
-            "%YAML:1.0\nORBextractor.iniThFAST: 5\nORBextractor.minThFAST: 9\n", "thr.yaml"));
-      },
-      "ORBextractor.minThFAST");
-  OrbSettings zero;
-  zero.nFeatures = 0;
-  expectErrorMentioning([&] { OrbExtractor{zero}; }, "nFeatures");
-}
-
 }  // namespace
 }  // namespace lumaslam::feature

@@ -127,7 +127,6 @@ TEST(Settings, EurocStereoConfigMatchesTheRealSensorFiles) {
   EXPECT_TRUE(s.stereo->T_c1_c2.matrix().isApprox(T_c1_c2.matrix(), 1e-9));
   EXPECT_NEAR(s.baseline(), 0.110, 0.001);
   EXPECT_DOUBLE_EQ(s.depth.thDepth, 60.0);
-  EXPECT_EQ(s.orb.nFeatures, 1200);
   const std::string summary = s.summary();
   EXPECT_NE(summary.find("stereo"), std::string::npos) << summary;
   EXPECT_NE(summary.find("b=0.1101"), std::string::npos) << summary;
@@ -160,7 +159,6 @@ TEST(Settings, KittiConfigMatchesRealCalibAndImageSize) {
 
   const Settings mono = loadSettings(config("kitti_00-02_mono.yaml"));
   EXPECT_EQ(mono.sensor, SensorType::Monocular);
-  EXPECT_EQ(mono.orb.nFeatures, 2000);
   EXPECT_NE(loadSettings(config("kitti_03_mono.yaml")).camera.fx, mono.camera.fx);
 }
 
@@ -173,7 +171,6 @@ TEST(Settings, ReadsNewKeysWithDefaults) {
   EXPECT_DOUBLE_EQ(s.camera.distortion[4], 0.0);
   EXPECT_TRUE(s.camera.hasDistortion());
   EXPECT_FALSE(s.camera.rgb);
-  EXPECT_EQ(s.orb.nFeatures, 1500);
   EXPECT_FALSE(s.system.sequential);
   EXPECT_EQ(s.system.queueCapacity, 4);
   EXPECT_TRUE(s.system.datasetRoot.empty());
@@ -313,21 +310,12 @@ TEST(Settings, BadSettingsNameFileKeyAndValue) {
       {with(kMonoNew, "Camera.width:", "Camera.width: 0"), {"Camera.width", "0"}},
       {with(kMonoNew, "Camera.height:", ""), {"Camera.height", "missing", "integer"}},
       {with(kMonoNew, "Camera1.cx:", "Camera1.cx: 900"), {"Camera1.cx", "900"}},
-      {with(kMonoNew, "ORBextractor.scaleFactor:", "ORBextractor.scaleFactor: 1.0"),
-       {"ORBextractor.scaleFactor", "> 1"}},
-      {with(kMonoNew, "ORBextractor.nLevels:", "ORBextractor.nLevels: 0"),
-       {"ORBextractor.nLevels", "0"}},
-      {with(kMonoNew, "ORBextractor.minThFAST:", "ORBextractor.minThFAST: 30"),
-       {"minThFAST", "30"}},
       {with(kMonoNew, "Camera.type:", "Camera.type: \"KannalaBrandt8\""),
        {"Camera.type", "KannalaBrandt8"}},
       {with(kMonoNew, "Camera.type:", "Camera.type: \"Fancy\""), {"Camera.type", "Fancy"}},
       {with(kMonoNew, "File.version:", "File.version: \"2.0\""), {"File.version", "2.0"}},
       {kMonoNew + "System.sensor: \"lidar\"\n", {"System.sensor", "lidar"}},
       {kMonoNew + "System.queueCapacity: 0\n", {"System.queueCapacity", "0"}},
-      // cv::FileStorage keeps 32-bit integers: the value as written, not -1294967296.
-      {with(kMonoNew, "ORBextractor.nFeatures:", "ORBextractor.nFeatures: 3000000000"),
-       {"test.yaml", "ORBextractor.nFeatures", "3000000000 is out of range"}},
       {kMonoNew + "Camera1.fx: 510.0\n",
        {"test.yaml: key 'Camera1.fx' is set twice: lines 4 and 18"}},
       {kMonoNew + "Camera.newWidth: 320\n", {"Camera.newHeight"}},

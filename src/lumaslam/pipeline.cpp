@@ -42,14 +42,10 @@ track::FrameCamera frameCameraFrom(const io::Settings& settings,
           settings.closeDepth()};
 }
 
-feature::OrbSettings orbSettingsFrom(const io::Settings& settings) {
-  feature::OrbSettings orb;
-  orb.nFeatures = settings.orb.nFeatures;
-  orb.scaleFactor = settings.orb.scaleFactor;
-  orb.nLevels = settings.orb.nLevels;
-  orb.iniThFAST = settings.orb.iniThFAST;
-  orb.minThFAST = settings.orb.minThFAST;
-  return orb;
+// The ORBextractor.* section, read by the one parser of it (feature/orb_settings.h).
+feature::OrbSettings orbSettingsOf(const io::Settings& settings) {
+  return settings.file ? feature::OrbSettings::fromSettings(*settings.file)
+                       : feature::OrbSettings{};
 }
 
 // Run once every part of the Pipeline has read its keys.
@@ -66,6 +62,7 @@ void checkUnknownKeys(const core::SettingsFile& file, bool strict) {
 
 Pipeline::Pipeline(const io::Settings& settings, const PipelineOptions& options)
     : settings_(settings),
+      orb_settings_(orbSettingsOf(settings_)),
       sequential_(options.sequential.value_or(settings.system.sequential)),
       map_(std::make_shared<map::Map>()) {
   const bool stereo = settings_.sensor == io::SensorType::Stereo;
@@ -133,7 +130,8 @@ Pipeline::Pipeline(const io::Settings& settings, const PipelineOptions& options)
   }
 
   const auto camera = frameCameraFrom(settings_, rectifier_.get());
-  frame_builder_ = std::make_unique<track::FrameBuilder>(camera, orbSettingsFrom(settings_));
+  frame_builder_ = std::make_unique<track::FrameBuilder>(camera, orb_settings_);
+  spdlog::debug("ORB extractor: {}", orb_settings_.summary());
   const bool loop_closing = places_ && options.loop_closing.value_or(settings_.loop.closing);
   if (loop_closing) {
     loop::LoopCloserParams loop_params;
@@ -465,6 +463,10 @@ Trajectory Pipeline::keyFrameTrajectory() const {
   return toCalibratedCamera(track::keyFrameTrajectory(map_->keyFramesOf(mainMap())));
 }
 
+const feature::OrbSettings& Pipeline::orbSettings() const {
+  return frame_builder_->extractor().settings();
+}
+
 const track::FrameCamera& Pipeline::frameCamera() const {
   return frame_builder_->camera();
 }
@@ -484,7 +486,7 @@ map::MapFingerprint Pipeline::mapFingerprint() const {
   fingerprint.image_width = camera.size().width;
   fingerprint.image_height = camera.size().height;
   fingerprint.camera = camera.intrinsics();
-  const auto orb = orbSettingsFrom(settings_);
+  const auto& orb = orbSettings();
   fingerprint.orb_features = orb.nFeatures;
   fingerprint.orb_scale_factor = orb.scaleFactor;
   fingerprint.orb_levels = orb.nLevels;

@@ -13,6 +13,7 @@
 #include <opencv2/core.hpp>
 
 #include "lumaslam/core/pose.h"
+#include "lumaslam/feature/orb_settings.h"
 #include "lumaslam/io/settings.h"
 #include "lumaslam/map/map_file.h"
 #include "lumaslam/track/tracker.h"
@@ -149,6 +150,8 @@ class Pipeline {
   // Null when loop closing is off (no vocabulary, Loop.closing 0 or --no-loop-closing).
   const loop::LoopCloser* loopCloser() const { return loop_closer_.get(); }
   const io::Settings& settings() const { return settings_; }
+  // ORBextractor.* as the feature extractor uses them (read once, by feature::OrbSettings).
+  const feature::OrbSettings& orbSettings() const;
   // The camera tracking works in (the rectified one for an unrectified stereo pair).
   const track::FrameCamera& frameCamera() const;
   // True for an unrectified stereo pair: keypoints are in the rectified left image's pixels.
@@ -179,6 +182,7 @@ class Pipeline {
   void removeDynamicFeatures(track::Frame& frame, const cv::Mat& depth_m, FrameResult& result);
 
   io::Settings settings_;
+  feature::OrbSettings orb_settings_;  // ORBextractor.*, defaults without a settings file
   bool sequential_ = false;
   std::shared_ptr<map::Map> map_;
   std::shared_ptr<loop::PlaceRecognition> places_;  // the Map's KeyFrameIndex

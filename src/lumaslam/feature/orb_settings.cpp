@@ -1,23 +1,44 @@
 #include "lumaslam/feature/orb_settings.h"
 
+#include <fmt/format.h>
+
 #include "lumaslam/core/error.h"
 
 namespace lumaslam::feature {
 
-void OrbSettings::validate(std::string_view origin) const {
-  if (nFeatures <= 0) fail("{}: ORBextractor.nFeatures must be > 0, got {}", origin, nFeatures);
+std::optional<OrbSettingProblem> OrbSettings::firstProblem() const {
+  const auto problem = [](std::string_view key, std::string why) {
+    return std::optional<OrbSettingProblem>(OrbSettingProblem{key, std::move(why)});
+  };
+  if (nFeatures <= 0) {
+    return problem("ORBextractor.nFeatures", fmt::format("must be > 0, found {}", nFeatures));
+  }
   if (!(scaleFactor > 1.0f) || scaleFactor > 4.0f) {
-    fail("{}: ORBextractor.scaleFactor must be in (1, 4], got {}", origin, scaleFactor);
+    return problem("ORBextractor.scaleFactor",
+                   fmt::format("must be > 1 and <= 4, found {}", scaleFactor));
   }
   if (nLevels < 1 || nLevels > 32) {
-    fail("{}: ORBextractor.nLevels must be in [1, 32], got {}", origin, nLevels);
+    return problem("ORBextractor.nLevels",
+                   fmt::format("must be >= 1 and <= 32, found {}", nLevels));
   }
   if (iniThFAST < 1 || iniThFAST > 255) {
-    fail("{}: ORBextractor.iniThFAST must be in [1, 255], got {}", origin, iniThFAST);
+    return problem("ORBextractor.iniThFAST",
+                   fmt::format("must be > 0 and <= 255, found {}", iniThFAST));
   }
-  if (minThFAST < 1 || minThFAST > iniThFAST) {
-    fail("{}: ORBextractor.minThFAST must be in [1, iniThFAST={}], got {}", origin, iniThFAST,
-         minThFAST);
+  if (minThFAST < 1) {
+    return problem("ORBextractor.minThFAST", fmt::format("must be > 0, found {}", minThFAST));
+  }
+  if (minThFAST > iniThFAST) {
+    return problem(
+        "ORBextractor.minThFAST",
+        fmt::format("must be <= ORBextractor.iniThFAST ({}), found {}", iniThFAST, minThFAST));
+  }
+  return std::nullopt;
+}
+
+void OrbSettings::validate(std::string_view origin) const {
+  if (const auto problem = firstProblem()) {
+    fail("{}: key '{}': {}", origin, problem->key, problem->why);
   }
 }
 
@@ -29,8 +50,14 @@ OrbSettings OrbSettings::fromSettings(const core::SettingsFile& settings) {
   orb.iniThFAST = settings.get<int>("ORBextractor.iniThFAST", orb.iniThFAST);
   orb.minThFAST = settings.get<int>("ORBextractor.minThFAST", orb.minThFAST);
   orb.parallelLevels = settings.get<bool>("ORBextractor.parallel", orb.parallelLevels);
-  orb.validate(settings.origin());
+  if (const auto problem = orb.firstProblem()) settings.invalid(problem->key, problem->why);
   return orb;
+}
+
+std::string OrbSettings::summary() const {
+  return fmt::format("{} features, {} levels x{}, FAST {}/{}, levels {}", nFeatures, nLevels,
+                     scaleFactor, iniThFAST, minThFAST,
+                     parallelLevels ? "in parallel" : "in sequence");
 }
 
 }  // namespace lumaslam::feature

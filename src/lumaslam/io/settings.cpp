@@ -246,26 +246,6 @@ SensorType chooseSensor(const KeyReader& in, std::optional<SensorType> requested
   return inferred;
 }
 
-OrbSettings readOrb(const KeyReader& in) {
-  OrbSettings orb;
-  orb.nFeatures = in.get<int>({"ORBextractor.nFeatures"}, orb.nFeatures);
-  in.requireAbove("ORBextractor.nFeatures", orb.nFeatures, 0);
-  orb.scaleFactor = in.get<float>({"ORBextractor.scaleFactor"}, orb.scaleFactor);
-  in.requireAbove("ORBextractor.scaleFactor", orb.scaleFactor, 1.0f);
-  orb.nLevels = in.get<int>({"ORBextractor.nLevels"}, orb.nLevels);
-  in.requireAtLeast("ORBextractor.nLevels", orb.nLevels, 1);
-  orb.iniThFAST = in.get<int>({"ORBextractor.iniThFAST"}, orb.iniThFAST);
-  in.requireAbove("ORBextractor.iniThFAST", orb.iniThFAST, 0);
-  orb.minThFAST = in.get<int>({"ORBextractor.minThFAST"}, orb.minThFAST);
-  in.requireAbove("ORBextractor.minThFAST", orb.minThFAST, 0);
-  if (orb.minThFAST > orb.iniThFAST) {
-    in.file().invalid("ORBextractor.minThFAST",
-                      fmt::format("must be <= ORBextractor.iniThFAST ({}), found {}", orb.iniThFAST,
-                                  orb.minThFAST));
-  }
-  return orb;
-}
-
 SystemSettings readSystem(const KeyReader& in) {
   SystemSettings system;
   system.sequential = in.get<bool>({"System.sequential"}, false);
@@ -350,7 +330,6 @@ std::string Settings::summary() const {
     if (stereo->right) text += ", unrectified pair";
   }
   if (sensor == SensorType::Rgbd) text += fmt::format(", DepthMapFactor={}", depth.depthMapFactor);
-  text += fmt::format(", ORB {} x{} levels", orb.nFeatures, orb.nLevels);
   if (system.sequential) text += ", sequential";
   return text;
 }
@@ -386,7 +365,6 @@ Settings Settings::fromFile(std::shared_ptr<const core::SettingsFile> file,
     settings.depth.depthMapFactor = in.get<double>({"RGBD.DepthMapFactor", "DepthMapFactor"}, &key);
     in.requireAbove(key, settings.depth.depthMapFactor, 0.0);
   }
-  settings.orb = readOrb(in);
   settings.system = readSystem(in);
   settings.loop = readLoop(in);
   settings.dynamic = readDynamic(in);

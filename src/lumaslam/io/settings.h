@@ -2,7 +2,8 @@
 // Typed settings of a run, read from one ORB-SLAM3-compatible %YAML:1.0 file (docs/settings.md).
 // Both the old ORB-SLAM2 keys (Camera.fx, Camera.bf, DepthMapFactor, ThDepth) and the ORB-SLAM3
 // "File.version 1.0" keys (Camera1.fx, Stereo.b, Stereo.T_c1_c2, RGBD.DepthMapFactor) are read.
-// Modules with their own sections (Enhancement.*, Detector.*) parse them from `file`.
+// Modules with their own sections (ORBextractor.* by feature::OrbSettings, Enhancement.*,
+// Detector.*) parse them from `file`, each in one place.
 #include <array>
 #include <filesystem>
 #include <memory>
@@ -61,14 +62,6 @@ struct DepthSettings {
   double thDepth = 40.0;
 };
 
-struct OrbSettings {
-  int nFeatures = 1000;
-  float scaleFactor = 1.2f;
-  int nLevels = 8;
-  int iniThFAST = 20;
-  int minThFAST = 7;
-};
-
 struct SystemSettings {
   bool sequential = false;  // System.sequential: run every stage in the caller's thread
   int queueCapacity = 4;    // System.queueCapacity: frames buffered between threaded stages
@@ -107,11 +100,11 @@ struct Settings {
   // coordinate u_r = u - bf / z); nullopt for monocular.
   std::optional<StereoSettings> stereo;
   DepthSettings depth;
-  OrbSettings orb;
   SystemSettings system;
   LoopSettings loop;
   DynamicSettings dynamic;
-  // The whole file, for modules that read their own sections (Enhancement.*, Detector.*).
+  // The whole file, for modules that read their own sections (ORBextractor.*, Enhancement.*,
+  // Detector.*).
   std::shared_ptr<const core::SettingsFile> file;
   std::filesystem::path path;  // empty when read from a string
 
