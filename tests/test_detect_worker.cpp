@@ -3,6 +3,7 @@
 #include <atomic>
 #include <chrono>
 #include <thread>
+#include <vector>
 
 #include <gtest/gtest.h>
 #include <opencv2/videoio.hpp>
@@ -194,6 +195,51 @@ TEST(DetectionWorker, StopsCleanlyWhileAJobRunsAndWakesWaiters) {
   for (int i = 0; i < 6; ++i) busy->push(i, 0.1 * i, frames[i]);
   EXPECT_EQ(busy->take(0).frame_index, 0);
   busy.reset();
+}
+
+// Records the thread and the timestamp of every detection; answers like StampDetector.
+class RecordingDetector : public Detector {
+ public:
+  struct Call {
+    std::thread::id thread;
+    double timestamp = 0.0;
+  };
+  explicit RecordingDetector(std::vector<Call>& calls) : calls_(calls) {}
+  Detections detect(const cv::Mat&, double timestamp) override {
+    calls_.push_back({std::this_thread::get_id(), timestamp});
+    return {{0, "person", 1.0f, cv::Rect2f(static_cast<float>(timestamp), 0, 10, 10)}};
+  }
+  std::string describe() const override { return "recording"; }
+
+ private:
+  std::vector<Call>& calls_;
+};
+
+// Sequential mode (System.sequential): no worker thread. A frame is detected in the caller's
+// thread when it is taken, or when a push finds the queue full (the oldest frame first), in
+// push order either way.
+TEST(DetectionWorker, WithoutAThreadDetectsInTheCallersThreadInPushOrder) {
+  std::vector<RecordingDetector::Call> calls;
+  WorkerParams params = workerParams(1, 2);
+  params.threaded = false;
+  DetectionWorker worker(std::make_unique<RecordingDetector>(calls), params);
+  const cv::Mat image(48, 64, CV_8UC3, cv::Scalar(0));
+  worker.push(10, 1.0, image);
+  worker.push(11, 2.0, image);
+  EXPECT_TRUE(calls.empty()) << "nothing is detected before it is needed";
+  worker.push(12, 3.0, image);  // the queue holds 2: frame 10 is detected to make room
+  ASSERT_EQ(calls.size(), 1U);
+  EXPECT_EQ(worker.take(11).detections.at(0).box.x, 2.0f);  // detects 11
+  EXPECT_EQ(worker.take(10).detections.at(0).box.x, 1.0f);  // already detected
+  EXPECT_EQ(worker.take(12).detections.at(0).box.x, 3.0f);
+  ASSERT_EQ(calls.size(), 3U);
+  for (std::size_t i = 0; i < calls.size(); ++i) {
+    EXPECT_EQ(calls[i].thread, std::this_thread::get_id()) << "detection " << i;
+    EXPECT_EQ(calls[i].timestamp, 1.0 + static_cast<double>(i));
+  }
+  EXPECT_THROW(worker.take(12), Error);  // taken once, as with a thread
+  worker.stop();
+  EXPECT_THROW(worker.push(13, 4.0, image), Error);
 }
 
 }  // namespace

@@ -51,7 +51,8 @@ const bool registered = registerCommand(
       cmd.add_option("--max-frames", *max_frames, "Stop after this many frames (0: all)")
           ->check(wholeNumber(0, 1'000'000'000));
       cmd.add_flag("--sequential", options->sequential,
-                   "Run local mapping in the caller's thread (deterministic)");
+                   "Run every stage (local mapping, loop closing, detection, the right "
+                   "image's jobs) in the caller's thread (deterministic)");
       cmd.add_option("--vocabulary", *vocabulary,
                      "Place-recognition vocabulary for relocalization and loop closing, "
                      "overriding Loop.vocabulary (`lumaslam vocab train/convert` output, or "

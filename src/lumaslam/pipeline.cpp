@@ -2,13 +2,13 @@
 
 #include <chrono>
 #include <functional>
-#include <future>
 
 #include <spdlog/spdlog.h>
 
 #include "lumaslam/camera/stereo_rectifier.h"
 #include "lumaslam/core/error.h"
 #include "lumaslam/core/gray_image.h"
+#include "lumaslam/core/side_job.h"
 #include "lumaslam/detect/detection_worker.h"
 #include "lumaslam/detect/detector_factory.h"
 #include "lumaslam/detect/detector_spec.h"
@@ -98,8 +98,10 @@ Pipeline::Pipeline(const io::Settings& settings, const PipelineOptions& options)
   }
   if (auto params = detect::detectorParamsFor(settings_.file.get(), options.detector)) {
     // makeDetector fails here, at startup, for a missing or invalid model / box file.
-    detector_ = std::make_unique<detect::DetectionWorker>(detect::makeDetector(*params),
-                                                          detect::WorkerParams::from(*params));
+    auto worker_params = detect::WorkerParams::from(*params);
+    worker_params.threaded = !sequential_;
+    detector_ =
+        std::make_unique<detect::DetectionWorker>(detect::makeDetector(*params), worker_params);
     detector_description_ = detect::describeChoice(params);
     detector_params_ = std::make_unique<detect::DetectorParams>(std::move(*params));
   }
@@ -130,7 +132,7 @@ Pipeline::Pipeline(const io::Settings& settings, const PipelineOptions& options)
   }
 
   const auto camera = frameCameraFrom(settings_, rectifier_.get());
-  frame_builder_ = std::make_unique<track::FrameBuilder>(camera, orb_settings_);
+  frame_builder_ = std::make_unique<track::FrameBuilder>(camera, orb_settings_, !sequential_);
   spdlog::debug("ORB extractor: {}", orb_settings_.summary());
   const bool loop_closing = places_ && options.loop_closing.value_or(settings_.loop.closing);
   if (loop_closing) {
@@ -159,6 +161,7 @@ Pipeline::Pipeline(const io::Settings& settings, const PipelineOptions& options)
   tracker_params.max_frames_between_keyframes = std::max(1, static_cast<int>(settings_.camera.fps));
   tracker_params.inlier_reference_half_life = tracker_params.max_frames_between_keyframes;
   tracker_params.new_map_after_s = settings_.system.newMapAfter;
+  tracker_params.monocular.two_view.threaded = !sequential_;
   tracker_params.motion_evidence.enabled =
       options.motion_evidence.value_or(settings_.dynamic.motionEvidenceFor(settings_.sensor));
   if (stereo) {
@@ -279,7 +282,7 @@ track::Frame Pipeline::buildStereoFrame(const SensorFrame& frame, FrameResult& r
   // for a plan shared with the left image, once the left plan is made.
   const bool shared_plan = enhancer_ && !right_enhancer_;
   FrameTiming right_timing;
-  auto right_job = std::async(std::launch::async, [&] {
+  auto right_job = core::startSideJob(!sequential_, [&] {
     const cv::Mat right = rectifier_ ? rectifier_->rectifyRight(frame.right) : frame.right;
     return shared_plan ? right : rightGray(right, right_timing);
   });
@@ -293,7 +296,7 @@ track::Frame Pipeline::buildStereoFrame(const SensorFrame& frame, FrameResult& r
     const auto plan_start = Clock::now();
     plan = enhancer_->plan(left);
     timing.enhance += msSince(plan_start);
-    right_enhanced = std::async(std::launch::async, [&, right = right_job.get()] {
+    right_enhanced = core::startSideJob(!sequential_, [&, right = right_job.get()] {
       return rightGray(right, right_timing, &*plan);
     });
   }

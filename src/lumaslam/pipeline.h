@@ -1,7 +1,8 @@
 #pragma once
 // The internal facade the CLI, tests and the public System (system.h) use: feed frames, get
-// poses. Owns the map, the tracker (runs in the caller's thread) and the local mapper (own
-// thread, or inline when System.sequential). Not installed: embed lumaslam through system.h.
+// poses. Owns the map, the tracker (runs in the caller's thread), the local mapper, the loop
+// closer and the detection worker (own threads, or inline when System.sequential, which also
+// runs the per-frame side jobs inline). Not installed: embed lumaslam through system.h.
 #include <filesystem>
 #include <functional>
 #include <map>

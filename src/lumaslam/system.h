@@ -6,9 +6,10 @@
 //
 // Thread safety: every member function may be called from any thread; calls are serialised
 // by one mutex inside the System (a trackX call in one thread makes saveMap in another wait for
-// the frame to finish). Local mapping and loop closing run in the System's own threads unless
-// SystemConfig::sequential; detection and a stereo frame's right image use helper threads
-// that finish within the frame's call. Different System objects share nothing.
+// the frame to finish). Local mapping, loop closing and detection run in the System's own
+// threads, and a stereo frame's right image (and the monocular initialisation's homography) in
+// helper jobs that finish within the frame's call, unless SystemConfig::sequential: then every
+// stage runs in the calling thread. Different System objects share nothing.
 #include <cstddef>
 #include <filesystem>
 #include <memory>

@@ -20,7 +20,7 @@ DetectionWorker::DetectionWorker(std::unique_ptr<Detector> detector, WorkerParam
   if (params_.queue_capacity < 1) {
     fail("DetectionWorker: queue capacity must be >= 1, found {}", params_.queue_capacity);
   }
-  thread_ = std::thread([this] { run(); });
+  if (params_.threaded) thread_ = std::thread([this] { run(); });
 }
 
 DetectionWorker::~DetectionWorker() {
@@ -47,8 +47,12 @@ void DetectionWorker::push(std::int64_t frame_index, double timestamp, const cv:
     fail("DetectionWorker: frame index {} pushed after {}; indices must increase", frame_index,
          *last_pushed_);
   }
-  space_available_.wait(
-      lock, [&] { return stopping_ || static_cast<int>(queue_.size()) < params_.queue_capacity; });
+  const auto has_room = [&] { return static_cast<int>(queue_.size()) < params_.queue_capacity; };
+  if (params_.threaded) {
+    space_available_.wait(lock, [&] { return stopping_ || has_room(); });
+  } else {
+    while (!stopping_ && !has_room()) processNextJob(lock);
+  }
   if (stopping_) fail("DetectionWorker: frame {} pushed after stop()", frame_index);
   job.sequence = pushed_count_++;
   last_pushed_ = frame_index;
@@ -63,7 +67,11 @@ FrameDetections DetectionWorker::take(std::int64_t frame_index) {
   if (pending_.count(frame_index) == 0) {
     fail("DetectionWorker: frame {} was never pushed or was already taken", frame_index);
   }
-  result_ready_.wait(lock, [&] { return stopping_ || results_.count(frame_index) != 0; });
+  const auto ready = [&] { return stopping_ || results_.count(frame_index) != 0; };
+  if (!params_.threaded) {
+    while (!ready() && !queue_.empty()) processNextJob(lock);
+  }
+  result_ready_.wait(lock, ready);
   const auto it = results_.find(frame_index);
   if (it == results_.end())
     fail("DetectionWorker: stopped before frame {} was detected", frame_index);
@@ -76,24 +84,24 @@ FrameDetections DetectionWorker::take(std::int64_t frame_index) {
 }
 
 void DetectionWorker::run() {
+  std::unique_lock lock(mutex_);
   while (true) {
-    Job job;
-    {
-      std::unique_lock lock(mutex_);
-      work_available_.wait(lock, [&] { return stopping_ || !queue_.empty(); });
-      if (stopping_) return;
-      job = std::move(queue_.front());
-      queue_.pop_front();
-    }
-    space_available_.notify_one();
-    Outcome outcome = process(job);
-    {
-      std::lock_guard lock(mutex_);
-      if (stopping_) return;
-      results_.emplace(job.frame_index, std::move(outcome));
-    }
-    result_ready_.notify_all();
+    work_available_.wait(lock, [&] { return stopping_ || !queue_.empty(); });
+    if (stopping_) return;
+    processNextJob(lock);
   }
+}
+
+void DetectionWorker::processNextJob(std::unique_lock<std::mutex>& lock) {
+  Job job = std::move(queue_.front());
+  queue_.pop_front();
+  lock.unlock();
+  space_available_.notify_one();
+  Outcome outcome = process(job);
+  lock.lock();
+  if (stopping_) return;
+  results_.emplace(job.frame_index, std::move(outcome));
+  result_ready_.notify_all();
 }
 
 DetectionWorker::Outcome DetectionWorker::process(const Job& job) {

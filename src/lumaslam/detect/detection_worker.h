@@ -9,6 +9,9 @@
 // between get the previous frame's boxes moved by optical flow (propagateDetections), so
 // detection keeps the camera's pace as long as one inference takes less than k frames.
 // Frames are processed in push order, so results are the same as running sequentially.
+// Sequential mode (WorkerParams::threaded false, System.sequential) starts no thread: take(i)
+// detects the queued frames up to i in the caller's thread, and a push onto a full queue
+// first detects the oldest queued frame.
 #include <condition_variable>
 #include <cstdint>
 #include <deque>
@@ -37,13 +40,15 @@ struct WorkerParams {
   int stride = 1;
   int queue_capacity = 4;
   PropagationParams propagation;
+  bool threaded = true;  // false: no worker thread, frames are detected in the caller's thread
 
   static WorkerParams from(const DetectorParams& params);
 };
 
 class DetectionWorker {
  public:
-  // Starts the worker thread. Throws Error for a null detector or stride/capacity < 1.
+  // Starts the worker thread (when threaded). Throws Error for a null detector or
+  // stride/capacity < 1.
   DetectionWorker(std::unique_ptr<Detector> detector, WorkerParams params);
   // Stops and joins; safe while a frame is being detected (that inference finishes first).
   ~DetectionWorker();
@@ -51,13 +56,14 @@ class DetectionWorker {
   DetectionWorker(const DetectionWorker&) = delete;
   DetectionWorker& operator=(const DetectionWorker&) = delete;
 
-  // Queues a copy of the frame; blocks while the queue is full. Throws Error when the index
-  // does not increase or the worker is stopped.
+  // Queues a copy of the frame; blocks while the queue is full (not threaded: detects the
+  // oldest queued frame instead). Throws Error when the index does not increase or the worker
+  // is stopped.
   void push(std::int64_t frame_index, double timestamp, const cv::Mat& image);
 
-  // Blocks until frame_index's result is ready and hands it over (once). Rethrows the
-  // detector's exception for that frame; throws Error for a frame never pushed, already
-  // taken, or dropped by stop().
+  // Blocks until frame_index's result is ready (not threaded: detects the queued frames up to
+  // it first) and hands it over (once). Rethrows the detector's exception for that frame;
+  // throws Error for a frame never pushed, already taken, or dropped by stop().
   FrameDetections take(std::int64_t frame_index);
 
   // Drops queued frames, lets the running inference finish, joins. Idempotent.
@@ -80,6 +86,10 @@ class DetectionWorker {
   };
 
   void run();
+  // Takes the oldest queued job, detects it with the lock released, stores its outcome
+  // (unless stopped meanwhile). `lock` holds mutex_ on entry and on return; the queue is not
+  // empty.
+  void processNextJob(std::unique_lock<std::mutex>& lock);
   Outcome process(const Job& job);
 
   std::unique_ptr<Detector> detector_;
@@ -96,8 +106,8 @@ class DetectionWorker {
   std::int64_t pushed_count_ = 0;
   bool stopping_ = false;
 
-  std::optional<LastFrame> last_frame_;  // worker thread only
-  std::thread thread_;                   // last member: starts after everything above exists
+  std::optional<LastFrame> last_frame_;  // the thread that detects only
+  std::thread thread_;  // last member: starts (when threaded) after everything above exists
 };
 
 }  // namespace lumaslam::detect

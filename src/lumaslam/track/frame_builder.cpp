@@ -2,11 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
-#include <future>
 
 #include <opencv2/calib3d.hpp>
 
 #include "lumaslam/core/error.h"
+#include "lumaslam/core/side_job.h"
 
 namespace lumaslam::track {
 namespace {
@@ -22,12 +22,14 @@ std::optional<feature::StereoMatcher> stereoMatcherFor(const FrameCamera& camera
 
 }  // namespace
 
-FrameBuilder::FrameBuilder(const FrameCamera& camera, const feature::OrbSettings& orb)
+FrameBuilder::FrameBuilder(const FrameCamera& camera, const feature::OrbSettings& orb,
+                           bool threaded)
     : camera_(camera),
       extractor_(orb),
       stereo_matcher_(stereoMatcherFor(camera, extractor_.levels())),
       pyramid_(std::make_shared<const feature::ScaleLevels>(extractor_.levels())),
-      bounds_(camera.pinhole.undistortedBounds()) {}
+      bounds_(camera.pinhole.undistortedBounds()),
+      threaded_(threaded) {}
 
 void FrameBuilder::checkImage(std::size_t index, const cv::Mat& gray, const char* what) const {
   if (gray.type() != CV_8UC1) fail("frame {}: expected an 8-bit gray {}", index, what);
@@ -99,7 +101,7 @@ Frame FrameBuilder::buildStereo(std::size_t index, double timestamp, const cv::M
   checkImage(index, left, "left image");
   checkImage(index, right, "right image");
   // The right image's features are only matched against the (masked) left ones: no mask.
-  auto right_job = std::async(std::launch::async, [&] { return extractor_.extract(right); });
+  auto right_job = core::startSideJob(threaded_, [&] { return extractor_.extract(right); });
   auto extracted_left = extractor_.extract(left, mask);
   const auto extracted_right = right_job.get();
   const auto matches = stereo_matcher_->match(extracted_left, extracted_right);

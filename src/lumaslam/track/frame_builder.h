@@ -18,14 +18,16 @@ namespace lumaslam::track {
 
 class FrameBuilder {
  public:
-  FrameBuilder(const FrameCamera& camera, const feature::OrbSettings& orb);
+  // `threaded`: buildStereo extracts the right image in a thread of its own beside the left
+  // one; false (System.sequential): one after the other in the caller's thread.
+  FrameBuilder(const FrameCamera& camera, const feature::OrbSettings& orb, bool threaded = true);
 
   // `gray` CV_8UC1; `depth_m` empty or CV_32FC1 metres (0 / NaN = no depth) of the same size;
   // `mask` empty or CV_8UC1, nonzero = dynamic (no features there).
   Frame build(std::size_t index, double timestamp, const cv::Mat& gray, const cv::Mat& depth_m,
               const cv::Mat& mask = cv::Mat()) const;
   // Rectified stereo pair (camera without distortion, bf > 0): `left` and `right` CV_8UC1 of
-  // the camera size, extracted concurrently; `mask` applies to the left image.
+  // the camera size, extracted concurrently (when threaded); `mask` applies to the left image.
   Frame buildStereo(std::size_t index, double timestamp, const cv::Mat& left, const cv::Mat& right,
                     const cv::Mat& mask = cv::Mat()) const;
 
@@ -45,6 +47,7 @@ class FrameBuilder {
   std::optional<feature::StereoMatcher> stereo_matcher_;  // when bf > 0
   std::shared_ptr<const feature::ScaleLevels> pyramid_;
   cv::Rect2f bounds_;
+  bool threaded_ = true;
 };
 
 }  // namespace lumaslam::track

@@ -2,11 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
-#include <future>
 
 #include <fmt/format.h>
 #include <opencv2/calib3d.hpp>
 
+#include "lumaslam/core/side_job.h"
 #include "lumaslam/optimize/local_ba.h"
 
 namespace lumaslam::track {
@@ -262,10 +262,11 @@ TwoViewReconstruction TwoViewInitializer::reconstruct(const std::vector<cv::Poin
     return result;
   }
 
-  // Both models in parallel (ORB-SLAM runs FindHomography and FindFundamental in two threads).
+  // Both models in parallel (ORB-SLAM runs FindHomography and FindFundamental in two threads),
+  // or one after the other in sequential mode.
   const double sigma = params_.sigma;
   const int iterations = params_.ransac_iterations;
-  auto homography = std::async(std::launch::async, [&] {
+  auto homography = core::startSideJob(params_.threaded, [&] {
     FittedModel fitted;
     cv::Mat mask;
     cv::Mat H;

@@ -32,6 +32,9 @@ struct TwoViewParams {
   // Two-view bundle adjustment (first view fixed) of the accepted reconstruction; its
   // chi-square outliers are dropped. 0 disables.
   int refine_iterations = 20;
+  // Fit the homography in a thread of its own beside the essential matrix; false
+  // (System.sequential): one after the other in the caller's thread.
+  bool threaded = true;
 };
 
 struct TwoViewReconstruction {
