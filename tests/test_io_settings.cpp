@@ -3,6 +3,8 @@
 #include <fstream>
 #include <sstream>
 
+#include <spdlog/sinks/ringbuffer_sink.h>
+#include <spdlog/spdlog.h>
 #include <opencv2/imgcodecs.hpp>
 
 #include "lumaslam/core/error.h"
@@ -172,7 +174,6 @@ TEST(Settings, ReadsNewKeysWithDefaults) {
   EXPECT_TRUE(s.camera.hasDistortion());
   EXPECT_FALSE(s.camera.rgb);
   EXPECT_FALSE(s.system.sequential);
-  EXPECT_EQ(s.system.queueCapacity, 4);
   EXPECT_TRUE(s.system.datasetRoot.empty());
   EXPECT_EQ(s.file->origin(), "test.yaml");
   EXPECT_EQ(s.baseline(), 0.0);
@@ -228,13 +229,30 @@ TEST(Settings, SensorSystemKeysAndOverride) {
   EXPECT_EQ(parse(rgbd, SensorType::Stereo).sensor, SensorType::Stereo);  // argument wins
   EXPECT_EQ(parse(rgbd + "System.sensor: \"mono\"\n", SensorType::Rgbd).sensor, SensorType::Rgbd);
 
-  const Settings s = parse(kMonoNew + "System:\n  sequential: 1\n  queueCapacity: 2\n");
+  const Settings s = parse(kMonoNew + "System:\n  sequential: 1\n");
   EXPECT_TRUE(s.system.sequential);
-  EXPECT_EQ(s.system.queueCapacity, 2);
 
   // Other modules' sections stay readable through the shared file.
   const Settings withSection = parse(kMonoNew + "Enhancement.preset: \"night\"\n");
   EXPECT_EQ(withSection.file->get<std::string>("Enhancement.preset"), "night");
+}
+
+// System.queueCapacity never sized a queue and is no longer read (issue 21): a file with it, even
+// with a value once rejected, loads with a warning naming the key and the detection queue's
+// own key, and the key does not count as unknown.
+TEST(Settings, RetiredQueueCapacityLoadsWithAWarning) {
+  const auto sink = std::make_shared<spdlog::sinks::ringbuffer_sink_mt>(16);
+  const auto logger = spdlog::default_logger();
+  logger->sinks().push_back(sink);
+  const auto parsed = [] { return parse(kMonoNew + "System.queueCapacity: 0\n"); };
+  EXPECT_NO_THROW(parsed());
+  logger->sinks().pop_back();
+  std::string logged;
+  for (const auto& line : sink->last_formatted()) logged += line;
+  EXPECT_NE(logged.find("test.yaml: key 'System.queueCapacity' is ignored"), std::string::npos)
+      << logged;
+  EXPECT_NE(logged.find("Detector.queue_capacity"), std::string::npos) << logged;
+  EXPECT_TRUE(parsed().file->askedKeys().contains("System.queueCapacity"));
 }
 
 // The motion test is on by default for RGB-D only; the key turns it on or off for any sensor.
@@ -315,7 +333,6 @@ TEST(Settings, BadSettingsNameFileKeyAndValue) {
       {with(kMonoNew, "Camera.type:", "Camera.type: \"Fancy\""), {"Camera.type", "Fancy"}},
       {with(kMonoNew, "File.version:", "File.version: \"2.0\""), {"File.version", "2.0"}},
       {kMonoNew + "System.sensor: \"lidar\"\n", {"System.sensor", "lidar"}},
-      {kMonoNew + "System.queueCapacity: 0\n", {"System.queueCapacity", "0"}},
       {kMonoNew + "Camera1.fx: 510.0\n",
        {"test.yaml: key 'Camera1.fx' is set twice: lines 4 and 18"}},
       {kMonoNew + "Camera.newWidth: 320\n", {"Camera.newHeight"}},

@@ -62,10 +62,6 @@ class KeyReader {
   void requireAbove(std::string_view key, T value, T bound) const {
     if (!(value > bound)) file_.invalid(key, fmt::format("must be > {}, found {}", bound, value));
   }
-  template <typename T>
-  void requireAtLeast(std::string_view key, T value, T bound) const {
-    if (!(value >= bound)) file_.invalid(key, fmt::format("must be >= {}, found {}", bound, value));
-  }
 
  private:
   const SettingsFile& file_;
@@ -246,11 +242,22 @@ SensorType chooseSensor(const KeyReader& in, std::optional<SensorType> requested
   return inferred;
 }
 
+// System.queueCapacity sized no queue (the detection queue has Detector.queue_capacity, the
+// keyframe queues their own rules) and is no longer read (issue 21): files that set it still
+// load, with a warning instead of the unknown-key one.
+void warnAboutRetiredKeys(const KeyReader& in) {
+  if (in.hasAny({"System.queueCapacity"})) {
+    spdlog::warn(
+        "{}: key 'System.queueCapacity' is ignored: it never sized a queue and is no longer "
+        "read; the detection queue's size is Detector.queue_capacity (docs/settings.md)",
+        in.file().origin());
+  }
+}
+
 SystemSettings readSystem(const KeyReader& in) {
   SystemSettings system;
   system.sequential = in.get<bool>({"System.sequential"}, false);
-  system.queueCapacity = in.get<int>({"System.queueCapacity"}, system.queueCapacity);
-  in.requireAtLeast("System.queueCapacity", system.queueCapacity, 1);
+  warnAboutRetiredKeys(in);
   system.newMapAfter = in.get<double>({"System.newMapAfter"}, system.newMapAfter);
   if (const auto root = in.find<std::string>({"System.datasetRoot"})) {
     if (root->empty()) in.file().invalid("System.datasetRoot", "must not be empty");

@@ -64,7 +64,6 @@ struct DepthSettings {
 
 struct SystemSettings {
   bool sequential = false;  // System.sequential: run every stage in the caller's thread
-  int queueCapacity = 4;    // System.queueCapacity: frames buffered between threaded stages
   // System.newMapAfter: seconds lost before a frame that cannot be relocalized starts a new
   // map (Atlas, docs/tracking.md); negative: stay lost instead.
   double newMapAfter = 1.0;
