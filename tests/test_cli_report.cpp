@@ -328,7 +328,7 @@ bool haveChromium() {
 }
 
 TEST_F(CliReport, OpensInHeadlessChromiumWithoutConsoleErrors) {
-  if (!haveChromium()) GTEST_SKIP() << "no /usr/bin/chromium (scripts/install-deps.sh)";
+  ASSERT_TRUE(haveChromium()) << "no /usr/bin/chromium: scripts/install-deps.sh installs it";
   const auto browser = openInChromium(out() / "report.html", dir_->path());
   ASSERT_EQ(browser.exit_code, 0);
   EXPECT_TRUE(browser.console.empty()) << browser.console.front();
@@ -340,7 +340,7 @@ TEST_F(CliReport, OpensInHeadlessChromiumWithoutConsoleErrors) {
 
 // The check above can fail: a page with a script error is caught.
 TEST(CliReportBrowser, TheConsoleCheckCatchesAScriptError) {
-  if (!haveChromium()) GTEST_SKIP() << "no /usr/bin/chromium (scripts/install-deps.sh)";
+  ASSERT_TRUE(haveChromium()) << "no /usr/bin/chromium: scripts/install-deps.sh installs it";
   TempDir dir("cli_report_browser");
   std::ofstream(dir.path() / "bad.html")
       << "<!DOCTYPE html><html><body><p>x</p><script>notDefined();</script></body></html>";
