@@ -82,10 +82,9 @@ constexpr int kPageWidth = 1300;
 constexpr int kPageHeight = 900;
 
 // Headless Chromium (Debian chromium, scripts/install-deps.sh) with SwiftShader for WebGL. The
-// DOM is dumped at the load event: the page is served with the status of that moment, which
-// the script shows at once (the event stream only brings later changes). The page never
-// finishes loading (its event stream stays open), so the screenshot is taken by --timeout,
-// 8 s after the start; the map arrives by fetch after the load event.
+// screenshot and the DOM are taken at the load event: the page is served with the status and
+// the map of that moment (/map.js), which its script draws at once; the event stream, which
+// stays open, only brings later changes.
 PageCapture capturePage(const std::string& url, const std::filesystem::path& dir,
                         const std::string& name) {
   const auto png = dir / (name + ".png");
@@ -95,9 +94,9 @@ PageCapture capturePage(const std::string& url, const std::filesystem::path& dir
       "timeout 120 chromium --headless=new --no-sandbox --use-angle=swiftshader "
       "--enable-unsafe-swiftshader --hide-scrollbars --enable-logging=stderr --window-size=" +
       std::to_string(kPageWidth) + "," + std::to_string(kPageHeight);
-  std::system((chromium + " --timeout=8000 --screenshot=" + png.string() + " " + url +
-               " >/dev/null 2>" + log.string())
-                  .c_str());
+  std::system(
+      (chromium + " --screenshot=" + png.string() + " " + url + " >/dev/null 2>" + log.string())
+          .c_str());
   std::system(
       (chromium + " --dump-dom " + url + " >" + dom.string() + " 2>>" + log.string()).c_str());
   return {cv::imread(png.string(), cv::IMREAD_COLOR), readFile(dom), readFile(log)};
@@ -124,8 +123,8 @@ const cv::Rect kRawFrame(10, 60, 620, 330);
 const cv::Rect kMapArea(10, 460, 620, 330);
 constexpr int kMapDrawn = 300;  // drawn pixels that say the map is there
 
-// Up to 3 page loads (no time asserted) until the page shows `expected` and the map: on a
-// loaded machine SwiftShader can take most of the 8 s to start.
+// Up to 3 page loads (no time asserted) until the page shows `expected` and the map; one is
+// enough unless the browser fails.
 PageCapture capturePageShowing(const std::string& url, const std::filesystem::path& dir,
                                const std::string& name, const std::string& expected) {
   PageCapture capture;

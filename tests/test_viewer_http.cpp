@@ -148,6 +148,16 @@ TEST_F(ViewerHttp, APublishedFrameIsDrawnWithItsKeypointsAndBoxes) {
       std::vector<uchar>(enhanced->body.begin(), enhanced->body.end()), cv::IMREAD_COLOR);
   ASSERT_FALSE(gray.empty());
   EXPECT_NEAR(gray.at<cv::Vec3b>(100, 10)[0], 128, 6) << "the features image, not the raw one";
+
+  // The page and its map script carry the state of the moment they are served.
+  const auto page = client_->Get("/");
+  ASSERT_TRUE(page);
+  EXPECT_NE(page->body.find("lumaslamInitialStatus = {"), std::string::npos);
+  EXPECT_NE(page->body.find("\"frame\":7,"), std::string::npos);
+  const auto map_script = client_->Get("/map.js");
+  ASSERT_TRUE(map_script);
+  EXPECT_EQ(map_script->body.rfind("window.lumaslamInitialMap = {\"map\":", 0), 0u)
+      << map_script->body.substr(0, 80);
 }
 
 TEST_F(ViewerHttp, TheMapRouteHoldsTheTrajectoryOfEveryPublishedFrame) {

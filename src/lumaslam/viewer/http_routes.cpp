@@ -93,6 +93,12 @@ void addStateRoutes(httplib::Server& server, const RouteContext& context) {
     noStore(response);
     response.set_content(state.historyJson(), kJson);
   });
+  // The map as a script (web/index.html): the page's first map arrives with the page.
+  server.Get("/map.js", [&state](const httplib::Request&, httplib::Response& response) {
+    noStore(response);
+    response.set_content("window.lumaslamInitialMap = " + state.mapJson() + ";",
+                         "application/javascript");
+  });
   server.Get("/map.json", [&state](const httplib::Request&, httplib::Response& response) {
     noStore(response);
     response.set_content(state.mapJson(), kJson);

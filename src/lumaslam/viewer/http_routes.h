@@ -5,7 +5,7 @@
 //   GET  /status.json       the frame's numbers, paused, status, versions
 //   GET  /events            server-sent events: /status.json's body on every change
 //   GET  /frame.jpg?view=raw|enhanced   the newest frame picture (404 before the first)
-//   GET  /map.json          map snapshot and trajectory
+//   GET  /map.json          map snapshot and trajectory (/map.js: the same as a script)
 //   GET  /history.json      the last 300 frames' numbers (for the plots)
 //   POST /control?action=pause|resume|step
 #include <atomic>

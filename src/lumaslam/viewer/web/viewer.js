@@ -126,12 +126,17 @@ function createMapView(canvas) {
     }
   }
 
-  (function render() {
+  function draw() {
     if (controls) controls.update();
     renderer.render(scene, camera);
+  }
+
+  (function render() {
+    draw();
     requestAnimationFrame(render);
   })();
-  return { update };
+  // Drawn at once: a map given with the page is on the canvas when the page has loaded.
+  return { update: (snapshot) => { update(snapshot); draw(); } };
 }
 
 function drawPlots(canvas) {
@@ -212,7 +217,12 @@ function control(action) {
     byId(action).addEventListener('click', () => control(action));
   }
   drawPlots(byId('plots'));
-  if (window.lumaslamInitialStatus) onStatus(window.lumaslamInitialStatus, mapView);
+  const initial = window.lumaslamInitialStatus;
+  if (initial && window.lumaslamInitialMap && mapView) {
+    shownMapVersion = initial.map_version;
+    mapView.update(window.lumaslamInitialMap);
+  }
+  if (initial) onStatus(initial, mapView);
   // Every change as it happens, and the frames from before the page was opened.
   const events = new EventSource('/events');
   events.onmessage = (event) => onStatus(JSON.parse(event.data), mapView);
