@@ -1,6 +1,6 @@
 #pragma once
-// The hand-over from the tracking thread to the viewer's encoder: one slot, the newest frame
-// wins (a frame the encoder has not taken yet is dropped), so the tracking thread never waits
+// The hand-over from the tracking thread to the viewer's thread: one slot, the newest frame
+// wins (a frame the viewer has not taken yet is dropped), so the tracking thread never waits
 // for the browser. Camera centres are kept for every frame, dropped or not.
 #include <chrono>
 #include <condition_variable>
@@ -24,7 +24,7 @@ class FrameMailbox {
   // Waits up to `timeout` for a frame.
   std::optional<TakenFrames> take(std::chrono::milliseconds timeout);
   std::size_t putCount() const;
-  std::size_t droppedCount() const;  // put, then replaced before the encoder took it
+  std::size_t droppedCount() const;  // put, then replaced before the viewer took it
 
  private:
   mutable std::mutex mutex_;

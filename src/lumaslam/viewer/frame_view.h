@@ -1,6 +1,6 @@
 #pragma once
 // What the tracking thread hands the viewer for one frame: plain values and image headers, so
-// that handing over costs no drawing or encoding (that happens on the viewer's thread).
+// that handing over costs no drawing or encoding (done when a page asks for the picture).
 #include <cstddef>
 #include <optional>
 #include <string>

@@ -71,7 +71,8 @@ void addFrameRoute(httplib::Server& server, const RouteContext& context) {
       response.set_content("view must be raw or enhanced, not '" + view + "'", "text/plain");
       return;
     }
-    const auto picture = state.picture(view == "enhanced");
+    const auto picture =
+        state.picture(view == "enhanced" ? FramePicture::Enhanced : FramePicture::Raw);
     if (!picture) {
       response.status = 404;
       response.set_content("no frame yet", "text/plain");

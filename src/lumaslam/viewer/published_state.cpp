@@ -2,7 +2,7 @@
 
 namespace lumaslam::viewer {
 
-void PublishedState::setFrame(EncodedFrame frame, const std::vector<Eigen::Vector3d>& new_centres) {
+void PublishedState::setFrame(ShownFrame frame, const std::vector<Eigen::Vector3d>& new_centres) {
   const std::lock_guard lock(mutex_);
   nlohmann::json entry;
   for (const char* key : {"frame", "state", "inliers", "timing"}) {
@@ -60,10 +60,24 @@ std::uint64_t PublishedState::waitForChange(std::uint64_t seen,
   return version_;
 }
 
-std::optional<std::vector<unsigned char>> PublishedState::picture(bool enhanced) const {
+std::optional<std::vector<unsigned char>> PublishedState::picture(FramePicture which) const {
+  std::shared_ptr<const FrameView> view;
+  std::uint64_t version = 0;
+  {
+    const std::lock_guard lock(mutex_);
+    if (!frame_) return std::nullopt;
+    const auto cached = encoded_.find(which);
+    if (cached != encoded_.end() && cached->second.frame_version == frame_version_) {
+      return cached->second.jpeg;
+    }
+    view = frame_->view;
+    version = frame_version_;
+  }
+  // Drawn and encoded outside the lock: new frames are not held up by a page.
+  auto jpeg = encodeJpeg(drawFramePicture(*view, which));
   const std::lock_guard lock(mutex_);
-  if (!frame_) return std::nullopt;
-  return enhanced ? frame_->enhanced_jpeg : frame_->raw_jpeg;
+  if (version == frame_version_) encoded_[which] = {version, jpeg};
+  return jpeg;
 }
 
 std::string PublishedState::statusJson() const {

@@ -6,7 +6,6 @@
 #include <spdlog/spdlog.h>
 
 #include "lumaslam/core/error.h"
-#include "lumaslam/viewer/frame_drawing.h"
 #include "lumaslam/viewer/frame_info.h"
 #include "lumaslam/viewer/http_routes.h"
 #include "lumaslam/viewer/map_snapshot.h"
@@ -57,12 +56,12 @@ Viewer::Viewer(ViewerOptions options, std::shared_ptr<const map::Map> map)
          options_.address, options_.port);
   }
   server_thread_ = std::thread([this] { server_->listen_after_bind(); });
-  encoder_ = std::thread([this] { encodeLoop(); });
+  publisher_ = std::thread([this] { publishLoop(); });
 }
 
 Viewer::~Viewer() {
   stopping_ = true;
-  if (encoder_.joinable()) encoder_.join();
+  if (publisher_.joinable()) publisher_.join();
   server_->stop();
   if (server_thread_.joinable()) server_thread_.join();
 }
@@ -83,7 +82,7 @@ void Viewer::finish(const std::string& status) {
   state_.setStatus(status);
 }
 
-void Viewer::encodeLoop() {
+void Viewer::publishLoop() {
   while (!stopping_) {
     auto taken = mailbox_.take(std::chrono::milliseconds(100));
     if (taken) show(std::move(*taken));
@@ -97,16 +96,14 @@ void Viewer::encodeLoop() {
 }
 
 void Viewer::show(TakenFrames taken) {
-  const FrameView& view = taken.newest;
-  EncodedFrame encoded;
-  encoded.raw_jpeg = encodeJpeg(drawFramePicture(view, FramePicture::Raw));
-  encoded.enhanced_jpeg = encodeJpeg(drawFramePicture(view, FramePicture::Enhanced));
-  encoded.info = frameInfoJson(view);
-  encoded.info["keyframes"] = map_->keyFrameCount();
-  encoded.info["map_points"] = map_->mapPointCount();
+  ShownFrame shown;
+  shown.info = frameInfoJson(taken.newest);
+  shown.info["keyframes"] = map_->keyFrameCount();
+  shown.info["map_points"] = map_->mapPointCount();
+  shown.view = std::make_shared<const FrameView>(std::move(taken.newest));
   ++frames_shown_;
   state_.setCounts(frames_shown_, mailbox_.droppedCount());
-  state_.setFrame(std::move(encoded), taken.camera_centres);
+  state_.setFrame(std::move(shown), taken.camera_centres);
 }
 
 void Viewer::refreshMap() {

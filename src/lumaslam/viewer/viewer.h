@@ -59,7 +59,7 @@ class Viewer {
   bool threeJsFound() const;
 
  private:
-  void encodeLoop();
+  void publishLoop();
   void show(TakenFrames taken);
   void refreshMap();
 
@@ -68,15 +68,15 @@ class Viewer {
   FrameMailbox mailbox_;
   PublishedState state_;
   RunControl control_;
-  std::string run_status_ = "running";  // encoder thread only after construction
+  std::string run_status_ = "running";  // set at construction
   std::atomic<bool> stopping_{false};
   std::atomic<bool> finished_{false};
-  std::size_t frames_shown_ = 0;   // encoder thread
+  std::size_t frames_shown_ = 0;   // viewer thread
   std::size_t frames_in_map_ = 0;  // frames_shown_ at the last map snapshot
   std::chrono::steady_clock::time_point last_map_{};
   std::unique_ptr<httplib::Server> server_;
   int port_ = 0;
-  std::thread encoder_;
+  std::thread publisher_;  // takes frames from the mailbox, refreshes the map snapshot
   std::thread server_thread_;
 };
 
