@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -16,6 +17,7 @@
 #include "lumaslam/synth/person_image.h"
 #include "lumaslam/synth/preset.h"
 #include "lumaslam/synth/sequence.h"
+#include "progress_line.h"
 
 namespace {
 
@@ -88,7 +90,11 @@ int runSynth(const SynthCommandOptions& o) {
   options.depth_misalignment = !o.synced_depth;
   options.texture_images = o.textures;
   if (!o.people.empty()) options.people = loadPeople(o.people);
-  writeSequence(o.out, o.preset, o.frames, o.seed, options);
+  std::optional<lumaslam::cli::ProgressLine> progress;
+  writeSequence(o.out, o.preset, o.frames, o.seed, options, [&](int done, int total) {
+    if (!progress) progress.emplace("frame", static_cast<std::size_t>(total));
+    progress->update(static_cast<std::size_t>(done), "rendered");
+  });
   return 0;
 }
 

@@ -20,7 +20,7 @@ class ProgressLine {
   ProgressLine(const ProgressLine&) = delete;
   ProgressLine& operator=(const ProgressLine&) = delete;
 
-  // Redraws at most 10 times a second (and for the last item).
+  // Redraws at most 10 times a second; the last item (done == total) ends the line.
   void update(std::size_t done, std::string_view state = {});
   bool shown() const { return shown_; }
 
@@ -30,7 +30,8 @@ class ProgressLine {
   const bool shown_;
   const std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
   std::chrono::steady_clock::time_point last_draw_{};
-  bool drawn_ = false;
+  bool drawn_ = false;  // a line is on the terminal, not yet ended
+  bool ended_ = false;  // the last item was drawn and the line ended
 };
 
 }  // namespace lumaslam::cli

@@ -1,6 +1,7 @@
 #include "lumaslam/synth/dataset_writer.h"
 
 #include <fstream>
+#include <mutex>
 #include <vector>
 
 #include <spdlog/spdlog.h>
@@ -72,13 +73,20 @@ Eigen::Quaterniond unitQuaternion(const SE3& T) {
 }
 
 std::vector<FrameRecord> renderAll(const SequenceRenderer& sequence,
-                                   const std::function<void(const Frame&)>& writeFrame) {
+                                   const std::function<void(const Frame&)>& writeFrame,
+                                   const FrameProgress& progress) {
   std::vector<FrameRecord> records(static_cast<size_t>(sequence.frameCount()));
+  std::mutex progress_mutex;
+  int done = 0;
   tbb::parallel_for(0, sequence.frameCount(), [&](int i) {
     const Frame frame = sequence.render(i);
     writeFrame(frame);
     records[static_cast<size_t>(i)] = {frame.timestamp_ns, frame.depth_timestamp_ns,
                                        frame.cam0.boxes};
+    if (progress) {
+      const std::lock_guard lock(progress_mutex);
+      progress(++done, sequence.frameCount());
+    }
   });
   return records;
 }
@@ -96,15 +104,19 @@ void writeDetections(const fs::path& path, const std::vector<FrameRecord>& recor
                 b.class_name, b.box.x, b.box.y, b.box.width, b.box.height);
 }
 
-void writeTum(const SequenceRenderer& sequence, const fs::path& out) {
+void writeTum(const SequenceRenderer& sequence, const fs::path& out,
+              const FrameProgress& progress) {
   for (const char* dir : {"rgb", "depth", "mask"}) makeDirectory(out / dir);
-  const auto records = renderAll(sequence, [&](const Frame& frame) {
-    const std::string stamp = tumTimestamp(frame.timestamp_ns);
-    writeImage(out / "rgb" / (stamp + ".png"), frame.cam0.image);
-    writeImage(out / "depth" / (tumTimestamp(frame.depth_timestamp_ns) + ".png"),
-               depthToPng(frame.sensor_depth));
-    writeImage(out / "mask" / (stamp + ".png"), frame.cam0.mask);
-  });
+  const auto records = renderAll(
+      sequence,
+      [&](const Frame& frame) {
+        const std::string stamp = tumTimestamp(frame.timestamp_ns);
+        writeImage(out / "rgb" / (stamp + ".png"), frame.cam0.image);
+        writeImage(out / "depth" / (tumTimestamp(frame.depth_timestamp_ns) + ".png"),
+                   depthToPng(frame.sensor_depth));
+        writeImage(out / "mask" / (stamp + ".png"), frame.cam0.mask);
+      },
+      progress);
   const std::string origin =
       fmt::format("# file: 'lumaslam_synth_{}_seed{}'", sequence.preset().name, sequence.seed());
   {
@@ -164,20 +176,24 @@ std::string eurocSensorYaml(const SequenceRenderer& sequence, int camera) {
       camera, tx, static_cast<int>(rig.fps), c.width, c.height, c.fx, c.fy, c.cx, c.cy);
 }
 
-void writeEuroc(const SequenceRenderer& sequence, const fs::path& out) {
+void writeEuroc(const SequenceRenderer& sequence, const fs::path& out,
+                const FrameProgress& progress) {
   const fs::path mav = out / "mav0";
   for (const fs::path& dir : {mav / "cam0" / "data", mav / "cam1" / "data",
                               mav / "state_groundtruth_estimate0", out / "mask"})
     makeDirectory(dir);
-  const auto records = renderAll(sequence, [&](const Frame& frame) {
-    const std::string name = std::to_string(frame.timestamp_ns) + ".png";
-    cv::Mat gray;
-    cv::cvtColor(frame.cam0.image, gray, cv::COLOR_BGR2GRAY);
-    writeImage(mav / "cam0" / "data" / name, gray);
-    cv::cvtColor(frame.cam1->image, gray, cv::COLOR_BGR2GRAY);
-    writeImage(mav / "cam1" / "data" / name, gray);
-    writeImage(out / "mask" / name, frame.cam0.mask);
-  });
+  const auto records = renderAll(
+      sequence,
+      [&](const Frame& frame) {
+        const std::string name = std::to_string(frame.timestamp_ns) + ".png";
+        cv::Mat gray;
+        cv::cvtColor(frame.cam0.image, gray, cv::COLOR_BGR2GRAY);
+        writeImage(mav / "cam0" / "data" / name, gray);
+        cv::cvtColor(frame.cam1->image, gray, cv::COLOR_BGR2GRAY);
+        writeImage(mav / "cam1" / "data" / name, gray);
+        writeImage(out / "mask" / name, frame.cam0.mask);
+      },
+      progress);
   for (int camera = 0; camera < 2; ++camera) {
     const fs::path dir = mav / fmt::format("cam{}", camera);
     TextFile csv(dir / "data.csv");
@@ -300,12 +316,13 @@ std::string settingsYaml(const SequenceRenderer& sequence) {
   return text;
 }
 
-void writeDataset(const SequenceRenderer& sequence, const fs::path& out) {
+void writeDataset(const SequenceRenderer& sequence, const fs::path& out,
+                  const FrameProgress& progress) {
   makeDirectory(out);
   if (sequence.rig().kind == SensorKind::Stereo)
-    writeEuroc(sequence, out);
+    writeEuroc(sequence, out, progress);
   else
-    writeTum(sequence, out);
+    writeTum(sequence, out, progress);
   TextFile settings(out / "settings.yaml");
   settings.line("{}", settingsYaml(sequence));
   spdlog::info("synth: wrote {} frames of '{}' (seed {}) to {}", sequence.frameCount(),
@@ -313,10 +330,10 @@ void writeDataset(const SequenceRenderer& sequence, const fs::path& out) {
 }
 
 void writeSequence(const fs::path& out, const std::string& preset, int frames, std::uint64_t seed,
-                   const SynthOptions& options) {
+                   const SynthOptions& options, const FrameProgress& progress) {
   const Preset& p = findPreset(preset);
   const SequenceRenderer sequence(p, frames > 0 ? frames : p.frames, seed, options);
-  writeDataset(sequence, out);
+  writeDataset(sequence, out, progress);
 }
 
 }  // namespace lumaslam::synth

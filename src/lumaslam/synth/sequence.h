@@ -3,6 +3,7 @@
 // render(i) is const, thread-safe and a pure function of (preset, seed, options, i).
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -105,7 +106,9 @@ class SequenceRenderer {
 
 // Convenience: render `frames` frames of the named preset and write the dataset to `out`
 // (TUM RGB-D layout for *-rgbd presets, EuRoC ASL for *-stereo). frames <= 0: preset default.
+// `progress` (dataset_writer.h's FrameProgress) is told after every frame.
 void writeSequence(const std::filesystem::path& out, const std::string& preset, int frames,
-                   std::uint64_t seed, const SynthOptions& options = {});
+                   std::uint64_t seed, const SynthOptions& options = {},
+                   const std::function<void(int done, int total)>& progress = {});
 
 }  // namespace lumaslam::synth

@@ -1,0 +1,54 @@
+// Progress lines (issue 18): `run` and `synth` show frames, rate and ETA on a terminal (here a
+// pseudo-terminal made by util-linux `script`) and print no progress at all into a pipe.
+#include <gtest/gtest.h>
+
+#include "test_cli.h"
+
+namespace {
+
+using lumaslam::test::cliPath;
+using lumaslam::test::runCli;
+using lumaslam::test::TempDir;
+
+// Runs the CLI with stdout and stderr on a pseudo-terminal; returns what it printed.
+std::string runOnTerminal(const std::string& arguments) {
+  const std::string command =
+      "script -qec '" + cliPath().string() + " " + arguments + "' /dev/null";
+  std::string output;
+  FILE* pipe = popen(command.c_str(), "r");
+  if (!pipe) return output;
+  std::array<char, 4096> buffer{};
+  while (fgets(buffer.data(), buffer.size(), pipe)) output += buffer.data();
+  pclose(pipe);
+  return output;
+}
+
+class CliProgress : public ::testing::Test {
+ protected:
+  TempDir dir_{"cli_progress"};
+  std::string data_ = (dir_.path() / "data").string();
+};
+
+TEST_F(CliProgress, OnATerminalSynthAndRunShowFramesRateAndEta) {
+  const std::string synth = runOnTerminal("synth " + data_ + " --preset xyz-rgbd --frames 80");
+  EXPECT_NE(synth.find("\rframe 80/80"), std::string::npos) << synth;
+  EXPECT_NE(synth.find(" fps"), std::string::npos) << synth;
+  const std::string run =
+      runOnTerminal("run --dataset tum:" + data_ + " --out " + (dir_.path() / "out").string());
+  EXPECT_NE(run.find("\rframe 80/80"), std::string::npos) << run;
+  EXPECT_NE(run.find("  ok"), std::string::npos) << "the tracking state: " << run;
+  EXPECT_NE(run.find("ETA"), std::string::npos) << run;
+}
+
+TEST_F(CliProgress, InAPipeThereIsNoProgressLine) {
+  const auto synth = runCli("synth " + data_ + " --preset xyz-rgbd --frames 20");
+  ASSERT_EQ(synth.exit_code, 0) << synth.output;
+  EXPECT_EQ(synth.output.find('\r'), std::string::npos) << synth.output;
+  const auto run =
+      runCli("run --dataset tum:" + data_ + " --out " + (dir_.path() / "out").string());
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  EXPECT_EQ(run.output.find('\r'), std::string::npos) << run.output;
+  EXPECT_EQ(run.output.find(" fps"), std::string::npos) << run.output;
+}
+
+}  // namespace
