@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <string>
 
 #include <nlohmann/json.hpp>
@@ -30,6 +31,14 @@ inline CliResult runCli(const std::string& arguments, const std::string& shell_s
   const int status = pclose(pipe);
   result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   return result;
+}
+
+// A whole text file ("" when it cannot be read).
+inline std::string readTextFile(const std::filesystem::path& file) {
+  std::ifstream in(file);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
 }
 
 // The summary.json that `lumaslam run` writes into `out` (empty json when there is none).

@@ -20,15 +20,9 @@
 namespace {
 
 using lumaslam::test::readRunSummary;
+using lumaslam::test::readTextFile;
 using lumaslam::test::runCli;
 using lumaslam::test::TempDir;
-
-std::string readText(const std::filesystem::path& file) {
-  std::ifstream in(file);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
 
 // The text of the element carrying data-key="KEY"; empty when there is none. (Found without
 // std::regex: its recursion overflows the stack on a page of base64 images.)
@@ -116,7 +110,7 @@ std::unique_ptr<TempDir> CliReport::dir_;
 
 TEST_F(CliReport, RunWritesOneSelfContainedPage) {
   ASSERT_TRUE(std::filesystem::exists(out() / "report.html"));
-  const std::string html = readText(out() / "report.html");
+  const std::string html = readTextFile(out() / "report.html");
   EXPECT_NE(html.find("<!DOCTYPE html>"), std::string::npos);
   EXPECT_EQ(html.find("<script"), std::string::npos);
   EXPECT_EQ(html.find("<link"), std::string::npos);
@@ -140,7 +134,7 @@ TEST_F(CliReport, RunWritesOneSelfContainedPage) {
 }
 
 TEST_F(CliReport, NumbersAreTheSummarys) {
-  const std::string html = readText(out() / "report.html");
+  const std::string html = readTextFile(out() / "report.html");
   const auto summary = readRunSummary(out());
   ASSERT_TRUE(summary.contains("evaluation"));
   const auto& evaluation = summary["evaluation"];
@@ -164,7 +158,7 @@ TEST_F(CliReport, NumbersAreTheSummarys) {
 }
 
 TEST_F(CliReport, SampleFramesAreInlineImages) {
-  const auto sources = imageSources(readText(out() / "report.html"));
+  const auto sources = imageSources(readTextFile(out() / "report.html"));
   ASSERT_EQ(sources.size(), 6U);  // first, middle, last tracked frame: raw and enhanced
   for (const std::string& source : sources) {
     const std::string prefix = "data:image/jpeg;base64,";
@@ -181,7 +175,7 @@ TEST_F(CliReport, ReportCommandWritesTheSamePageElsewhere) {
   const auto other = dir_->path() / "elsewhere" / "page.html";
   const auto report = runCli("report " + out().string() + " --out " + other.string());
   ASSERT_EQ(report.exit_code, 0) << report.output;
-  EXPECT_EQ(readText(other), readText(out() / "report.html"));
+  EXPECT_EQ(readTextFile(other), readTextFile(out() / "report.html"));
 }
 
 TEST_F(CliReport, AGoneDatasetCostsOnlyTheFramesAndPlots) {
@@ -195,7 +189,7 @@ TEST_F(CliReport, AGoneDatasetCostsOnlyTheFramesAndPlots) {
   std::ofstream(copy / "summary.json") << summary.dump(2);
   const auto report = runCli("report " + copy.string());
   ASSERT_EQ(report.exit_code, 0) << report.output;
-  const std::string html = readText(copy / "report.html");
+  const std::string html = readTextFile(copy / "report.html");
   EXPECT_TRUE(imageSources(html).empty());
   EXPECT_NE(html.find("Sample frames unavailable"), std::string::npos);
   EXPECT_NE(html.find("gone"), std::string::npos);
@@ -214,7 +208,7 @@ TEST_F(CliReport, PlotsOfAnotherEvaluationThanTheSummarysAreSaidSo) {
   std::ofstream(copy / "summary.json") << summary.dump(2);
   const auto report = runCli("report " + copy.string());
   ASSERT_EQ(report.exit_code, 0) << report.output;
-  const std::string html = readText(copy / "report.html");
+  const std::string html = readTextFile(copy / "report.html");
   EXPECT_EQ(cellText(html, "ate.rmse"), "1.000000");  // the summary's, as it says
   EXPECT_NE(html.find("not summary.json's 1.000000 m"), std::string::npos);
   EXPECT_NE(html.find("id=\"trajectory-views\""), std::string::npos);
@@ -223,7 +217,7 @@ TEST_F(CliReport, PlotsOfAnotherEvaluationThanTheSummarysAreSaidSo) {
 // timing.csv as a run with a second map would write it: the report draws which frames each
 // map holds (no such strip for the one-map run above).
 TEST_F(CliReport, ARunWithSeveralMapsShowsTheMapOfEachFrame) {
-  EXPECT_EQ(readText(out() / "report.html").find("id=\"map-timeline\""), std::string::npos);
+  EXPECT_EQ(readTextFile(out() / "report.html").find("id=\"map-timeline\""), std::string::npos);
   const auto copy = dir_->path() / "two_maps";
   std::filesystem::create_directories(copy);
   std::filesystem::copy_file(out() / "trajectory.txt", copy / "trajectory.txt");
@@ -240,7 +234,7 @@ TEST_F(CliReport, ARunWithSeveralMapsShowsTheMapOfEachFrame) {
   edited.close();
   const auto report = runCli("report " + copy.string());
   ASSERT_EQ(report.exit_code, 0) << report.output;
-  const std::string html = readText(copy / "report.html");
+  const std::string html = readTextFile(copy / "report.html");
   EXPECT_NE(html.find("id=\"map-timeline\""), std::string::npos);
   EXPECT_NE(html.find(">map 0: 40<"), std::string::npos);
   EXPECT_NE(html.find(">map 3: 20<"), std::string::npos);
@@ -284,13 +278,13 @@ TEST(CliReportRepeat, ReportsEachRunAndLinksThem) {
   ASSERT_EQ(run.exit_code, 0) << run.output;
   const auto report = runCli("report " + out.string());
   ASSERT_EQ(report.exit_code, 0) << report.output;
-  const std::string html = readText(out / "report.html");
+  const std::string html = readTextFile(out / "report.html");
   for (int k = 1; k <= 2; ++k) {
     const std::string run_k = "run_" + std::to_string(k);
     EXPECT_NE(html.find("href=\"" + run_k + "/report.html\""), std::string::npos) << run_k;
     EXPECT_EQ(cellText(html, run_k + ".tracked"),
               std::to_string(readRunSummary(out / run_k)["tracked"].get<int>()));
-    EXPECT_FALSE(imageSources(readText(out / run_k / "report.html")).empty()) << run_k;
+    EXPECT_FALSE(imageSources(readTextFile(out / run_k / "report.html")).empty()) << run_k;
   }
 }
 
@@ -313,8 +307,8 @@ BrowserResult openInChromium(const std::filesystem::path& page, const std::files
   BrowserResult result;
   const int status = std::system(command.c_str());
   result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  result.dom = readText(dom);
-  std::istringstream lines(readText(log));
+  result.dom = readTextFile(dom);
+  std::istringstream lines(readTextFile(log));
   for (std::string line; std::getline(lines, line);) {
     if (line.find(":CONSOLE") != std::string::npos || line.find("Uncaught") != std::string::npos) {
       result.console.push_back(line);

@@ -27,15 +27,9 @@ extern char** environ;
 namespace {
 
 using lumaslam::test::readRunSummary;
+using lumaslam::test::readTextFile;
 using lumaslam::test::runCli;
 using lumaslam::test::TempDir;
-
-std::string readFile(const std::filesystem::path& file) {
-  std::ifstream in(file);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
 
 // A child process with stdout + stderr in `log`; killed and reaped if still running at the end.
 class Child {
@@ -99,7 +93,7 @@ PageCapture capturePage(const std::string& url, const std::filesystem::path& dir
           .c_str());
   std::system(
       (chromium + " --dump-dom " + url + " >" + dom.string() + " 2>>" + log.string()).c_str());
-  return {cv::imread(png.string(), cv::IMREAD_COLOR), readFile(dom), readFile(log)};
+  return {cv::imread(png.string(), cv::IMREAD_COLOR), readTextFile(dom), readTextFile(log)};
 }
 
 // Pixels that differ from the page's dark panel background in a region of the screenshot.
@@ -148,7 +142,7 @@ class CliViewer : public ::testing::Test {
   // The port the run printed ("viewer: http://127.0.0.1:PORT/"), 0 until it has.
   int printedPort(const std::filesystem::path& log) {
     std::smatch match;
-    const std::string text = readFile(log);
+    const std::string text = readTextFile(log);
     static const std::regex line(R"(viewer: http://127\.0\.0\.1:(\d+)/)");
     return std::regex_search(text, match, line) ? std::stoi(match[1].str()) : 0;
   }
@@ -191,7 +185,7 @@ TEST_F(CliViewer, TheBrowserShowsTheFrameTheMapAndTheStatusAsTheRunAdvances) {
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
     port = printedPort(log);
   }
-  ASSERT_GT(port, 0) << readFile(log);
+  ASSERT_GT(port, 0) << readTextFile(log);
   httplib::Client client("127.0.0.1", port);
   const std::string url = "http://127.0.0.1:" + std::to_string(port) + "/";
 
@@ -216,7 +210,7 @@ TEST_F(CliViewer, TheBrowserShowsTheFrameTheMapAndTheStatusAsTheRunAdvances) {
   EXPECT_EQ(late.log.find("Uncaught"), std::string::npos) << late.log;
 
   ASSERT_TRUE(client.Post("/control?action=resume", "", "text/plain"));
-  ASSERT_EQ(run.wait(), 0) << readFile(log);
+  ASSERT_EQ(run.wait(), 0) << readTextFile(log);
   const auto summary = readRunSummary(out);
   EXPECT_EQ(summary["viewer"]["frames_published"], summary["frames"]);
   // The tracking thread's cost is reported (docs/viewer.md has the measured numbers).
@@ -226,7 +220,7 @@ TEST_F(CliViewer, TheBrowserShowsTheFrameTheMapAndTheStatusAsTheRunAdvances) {
   const auto plain =
       runCli("run --dataset tum:" + data_.string() + " --sequential --out " + plain_out.string());
   ASSERT_EQ(plain.exit_code, 0) << plain.output;
-  EXPECT_EQ(readFile(out / "trajectory.txt"), readFile(plain_out / "trajectory.txt"))
+  EXPECT_EQ(readTextFile(out / "trajectory.txt"), readTextFile(plain_out / "trajectory.txt"))
       << "the viewer changed the result";
 }
 

@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include "lumaslam/eval/svg_document.h"
+
 namespace lumaslam::cli {
 namespace {
 
@@ -27,26 +29,7 @@ std::string cellHtml(const Cell& cell) {
 }  // namespace
 
 std::string escapeHtml(std::string_view text) {
-  std::string escaped;
-  for (const char c : text) {
-    switch (c) {
-      case '&':
-        escaped += "&amp;";
-        break;
-      case '<':
-        escaped += "&lt;";
-        break;
-      case '>':
-        escaped += "&gt;";
-        break;
-      case '"':
-        escaped += "&quot;";
-        break;
-      default:
-        escaped += c;
-    }
-  }
-  return escaped;
+  return eval::escapeXml(text);
 }
 
 Cell Cell::number(double value, std::string key, int decimals) {

@@ -7,8 +7,6 @@
 
 namespace lumaslam::eval {
 
-namespace {
-
 std::string escapeXml(std::string_view text) {
   std::string escaped;
   for (const char c : text) {
@@ -31,6 +29,8 @@ std::string escapeXml(std::string_view text) {
   }
   return escaped;
 }
+
+namespace {
 
 std::string styleAttributes(const SvgStyle& style) {
   std::string attributes =

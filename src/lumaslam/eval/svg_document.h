@@ -11,6 +11,9 @@
 
 namespace lumaslam::eval {
 
+// Text for XML or HTML content and quoted attribute values: & < > " as entities.
+std::string escapeXml(std::string_view text);
+
 struct SvgStyle {
   std::string stroke = "black";
   double stroke_width = 1.0;
