@@ -6,7 +6,7 @@ JOBS ?= $(shell nproc)
 SHARED ?= $(abspath ../shared)
 CMAKE_FLAGS ?=
 
-.PHONY: all deps configure build demo test test-strength test-tsan test-asan bench bench-dynamic clean format
+.PHONY: all deps configure build demo test test-strength test-tsan test-asan fuzz bench bench-dynamic clean format
 
 all: build
 
@@ -58,6 +58,19 @@ test-asan: deps
 		LSAN_OPTIONS="suppressions=$(CURDIR)/tests/lsan.supp" \
 		UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
 		ctest --output-on-failure -j $(JOBS) -L '$(SANITIZER_TESTS)'
+
+# libFuzzer targets of fuzz/ (docs/testing.md, "Fuzzing"): a clang build of only the parsers
+# with ASan and UBSan, each target run FUZZ_SECONDS on its seeds; fails on any finding.
+# FUZZ_TARGETS narrows the run, e.g. FUZZ_TARGETS='map_file vocabulary'.
+FUZZ_SECONDS ?= 60
+FUZZ_TARGETS ?= settings trajectory tum_index kitti_calib euroc_sensor box_file map_file \
+	vocabulary experiment_plan
+fuzz: deps
+	@CC=clang CXX=clang++ cmake -S . -B build-fuzz -G Ninja -DLUMASLAM_FUZZ=ON \
+		-DLUMASLAM_SANITIZE=fuzzer-no-link,address,undefined -DLUMASLAM_BUILD_TESTS=OFF \
+		-DLUMASLAM_BUILD_PYTHON=OFF $(SANITIZER_CMAKE) >/dev/null
+	@cmake --build build-fuzz -j $(JOBS) --target fuzz_seeds $(addprefix fuzz_,$(FUZZ_TARGETS))
+	@scripts/run-fuzzers.sh build-fuzz $(FUZZ_SECONDS) $(FUZZ_TARGETS)
 
 bench: build
 	$(BUILD_DIR)/lumaslam_bench --benchmark_min_time=0.2
