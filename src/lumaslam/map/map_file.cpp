@@ -216,7 +216,7 @@ Decoded decode(const std::string& bytes, const std::string& name) {
   Decoded decoded;
   try {
     std::istringstream in(std::string(payload), std::ios::binary);
-    cereal::PortableBinaryInputArchive archive(in);
+    BoundedInputArchive archive(in, payload.size());
     archive(decoded.fingerprint, decoded.record);
   } catch (const std::exception& e) {
     fail("{}: malformed map content ({})", name, e.what());

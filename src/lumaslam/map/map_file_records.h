@@ -1,6 +1,7 @@
 #pragma once
-// The plain records a map file stores (map_file.h) and their cereal serialization. Everything
-// is by value and by id, so that reading a file builds nothing until it has been checked.
+// The plain records a map file stores (map_file.h) and their cereal serialization, every length
+// through sized() (bounded_lengths.h). Everything is by value and by id, so that reading a file
+// builds nothing until it has been checked.
 #include <array>
 #include <cstdint>
 #include <string>
@@ -12,6 +13,7 @@
 #include <cereal/types/utility.hpp>
 #include <cereal/types/vector.hpp>
 
+#include "lumaslam/map/bounded_lengths.h"
 #include "lumaslam/map/ids.h"
 #include "lumaslam/map/map_file.h"
 
@@ -35,10 +37,10 @@ struct KeyFrameRecord {
   std::uint64_t frame_index = 0;
   double timestamp = 0.0;
   MapId map_id = 0;
-  std::array<double, 12> T_c_w{};  // rotation rows then translation
+  std::array<double, 12> T_c_w{};      // rotation rows then translation
   std::array<double, 5> intrinsics{};  // fx fy cx cy bf
   FeatureRecord features;
-  std::vector<Id> points;  // per feature: map point id or kNoId
+  std::vector<Id> points;                                // per feature: map point id or kNoId
   std::vector<std::pair<Id, std::int32_t>> connections;  // keyframe id, weight
   Id parent = kNoId;
   std::vector<Id> children, loop_edges;
@@ -64,33 +66,35 @@ struct MapRecord {
 
 template <class Archive>
 void serialize(Archive& ar, MapFingerprint& f) {
-  ar(f.sensor, f.image_width, f.image_height, f.camera.fx, f.camera.fy, f.camera.cx, f.camera.cy,
-     f.camera.bf, f.orb_features, f.orb_scale_factor,
-     f.orb_levels, f.orb_ini_fast, f.orb_min_fast, f.vocabulary, f.vocabulary_name);
+  ar(sized(f.sensor), f.image_width, f.image_height, f.camera.fx, f.camera.fy, f.camera.cx,
+     f.camera.cy, f.camera.bf, f.orb_features, f.orb_scale_factor, f.orb_levels, f.orb_ini_fast,
+     f.orb_min_fast, f.vocabulary, sized(f.vocabulary_name));
 }
 
 template <class Archive>
 void serialize(Archive& ar, FeatureRecord& f) {
-  ar(f.x, f.y, f.size, f.angle, f.response, f.octave, f.class_id, f.undistorted_x,
-     f.undistorted_y, f.u_right, f.depth, f.descriptors, f.moving, f.grid_bounds, f.grid_columns,
+  ar(sized(f.x), sized(f.y), sized(f.size), sized(f.angle), sized(f.response), sized(f.octave),
+     sized(f.class_id), sized(f.undistorted_x), sized(f.undistorted_y), sized(f.u_right),
+     sized(f.depth), sized(f.descriptors), sized(f.moving), f.grid_bounds, f.grid_columns,
      f.grid_rows);
 }
 
 template <class Archive>
 void serialize(Archive& ar, KeyFrameRecord& k) {
-  ar(k.id, k.frame_index, k.timestamp, k.map_id, k.T_c_w, k.intrinsics, k.features, k.points,
-     k.connections, k.parent, k.children, k.loop_edges);
+  ar(k.id, k.frame_index, k.timestamp, k.map_id, k.T_c_w, k.intrinsics, k.features, sized(k.points),
+     sized(k.connections), k.parent, sized(k.children), sized(k.loop_edges));
 }
 
 template <class Archive>
 void serialize(Archive& ar, MapPointRecord& p) {
   ar(p.id, p.reference, p.position, p.normal, p.min_distance, p.max_distance, p.descriptor,
-     p.visible, p.found, p.observations);
+     p.visible, p.found, sized(p.observations));
 }
 
 template <class Archive>
 void serialize(Archive& ar, MapRecord& m) {
-  ar(m.next_keyframe_id, m.next_point_id, m.next_map_id, m.origins, m.keyframes, m.points);
+  ar(m.next_keyframe_id, m.next_point_id, m.next_map_id, sized(m.origins), sized(m.keyframes),
+     sized(m.points));
 }
 
 }  // namespace lumaslam::map
