@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstring>
 #include <fstream>
 #include <sstream>
@@ -234,6 +235,19 @@ void checkFeatures(const FeatureRecord& f, const std::string& what) {
       f.undistorted_y.size() == n && f.u_right.size() == n && f.depth.size() == n &&
       f.descriptors.size() == 32 * n && (f.moving.empty() || f.moving.size() == n);
   if (!sizes_agree) fail("{}: feature arrays of different lengths", what);
+  // Grids are feature::FeatureGrid's 64 x 48 cells; a corrupt count must not allocate gigabytes.
+  constexpr std::int64_t kMaxGridCells = 1 << 16;
+  const bool no_grid = f.grid_columns == 0 && f.grid_rows == 0;
+  const bool grid_ok =
+      no_grid || (f.grid_columns > 0 && f.grid_rows > 0 &&
+                  std::int64_t{f.grid_columns} * f.grid_rows <= kMaxGridCells &&
+                  std::all_of(f.grid_bounds.begin(), f.grid_bounds.end(),
+                              [](float v) { return std::isfinite(v); }) &&
+                  f.grid_bounds[2] > 0.0F && f.grid_bounds[3] > 0.0F);
+  if (!grid_ok) {
+    fail("{}: feature grid of {}x{} cells over {}x{} pixels (at most {} cells)", what,
+         f.grid_columns, f.grid_rows, f.grid_bounds[2], f.grid_bounds[3], kMaxGridCells);
+  }
 }
 
 void checkStructure(const MapRecord& r, const std::string& name) {
