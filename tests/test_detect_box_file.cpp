@@ -77,6 +77,17 @@ TEST(BoxFileDetector, NumericClassesUseTheNamesFile) {
   EXPECT_EQ(boxes[0].class_name, "person");
 }
 
+TEST(BoxFileDetector, ClassIdBeyondIntRangeIsAnError) {
+  // Found by fuzz/box_file_fuzz.cpp: std::stoi's std::out_of_range escaped instead of an Error.
+  test::TempDir dir("detect_box_big_id");
+  DetectorParams params;
+  params.type = "box_file";
+  params.names = test::modelsDir() / "coco80.names";
+  params.box_file = writeFile(dir, "ids.txt", "0.5 0 1 2 3 4\n0.5 99999999999 1 2 3 4\n");
+  const std::string message = errorOf([&] { BoxFileDetector d(params); });
+  EXPECT_NE(message.find("ids.txt:2: class id 99999999999"), std::string::npos) << message;
+}
+
 TEST(BoxFileDetector, GarbageLinesNameFileAndLine) {
   test::TempDir dir("detect_box_garbage");
   DetectorParams params;

@@ -1,6 +1,7 @@
 #include "lumaslam/detect/box_file_detector.h"
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <fstream>
 #include <sstream>
@@ -53,8 +54,11 @@ BoxFileDetector::BoxFileDetector(const DetectorParams& params)
     detection.score = 1.0f;
     detection.box = {x, y, w, h};
     if (isInteger(class_token)) {
-      detection.class_id = std::stoi(class_token);
-      if (detection.class_id >= static_cast<int>(names.size())) {
+      // from_chars, not stoi: an id beyond int range is the same error as any unlisted id.
+      const char* end = class_token.data() + class_token.size();
+      const auto [parsed_end, error] = std::from_chars(class_token.data(), end, detection.class_id);
+      if (error != std::errc() || parsed_end != end ||
+          detection.class_id >= static_cast<int>(names.size())) {
         fail("{}:{}: class id {} needs a names file (Detector.names) listing it", file_.string(),
              line_number, class_token);
       }
