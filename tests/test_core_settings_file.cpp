@@ -56,6 +56,19 @@ TEST(SettingsFile, ErrorsNameFileKeyAndExpectedType) {
   EXPECT_THROW((void)s.getMatrix("Stereo.T_c1_c2", 3, 3), Error);
 }
 
+TEST(SettingsFile, DottedKeyUnderAScalarIsMissing) {
+  // Found by fuzz/settings_fuzz.cpp: the nested lookup of Camera.fx indexed the scalar
+  // `Camera: 500` and OpenCV's isMap() assertion (cv::Exception) escaped.
+  const auto s = SettingsFile::fromString("Camera: 500\nCamera.fy: 500\n", "scalar.yaml");
+  EXPECT_FALSE(s.has("Camera.fx"));
+  try {
+    (void)s.get<double>("Camera.fx");
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_STREQ(e.what(), "scalar.yaml: key 'Camera.fx' is missing (expected number)");
+  }
+}
+
 TEST(SettingsFile, MissingOrBrokenFileIsAClearError) {
   lumaslam::test::TempDir dir("settings");
   EXPECT_THROW((void)SettingsFile::open(dir.path() / "nope.yaml"), Error);

@@ -143,6 +143,8 @@ cv::FileNode SettingsFile::node(std::string_view key) const {
   std::string_view rest = key;
   while (!rest.empty()) {
     const auto dot = rest.find('.');
+    // "Camera: 500" holds no Camera.fx; cv::FileNode::operator[] asserts on a non-map.
+    if (!n.isMap()) return cv::FileNode();
     n = n[std::string(rest.substr(0, dot))];
     if (n.empty()) return n;
     rest = dot == std::string_view::npos ? std::string_view{} : rest.substr(dot + 1);
