@@ -69,6 +69,21 @@ TEST(SettingsFile, DottedKeyUnderAScalarIsMissing) {
   }
 }
 
+TEST(SettingsFile, TopLevelThatIsNoMapIsAClearError) {
+  // Found by fuzz/settings_fuzz.cpp: "-- Y" parses to a non-map root and the first lookup
+  // escaped as OpenCV's isMap() assertion.
+  for (const std::string text : {"-- Y", "- 1\n- 2\n"}) {
+    try {
+      (void)SettingsFile::fromString(text, "list.yaml");
+      FAIL() << "no error for '" << text << "'";
+    } catch (const Error& e) {
+      EXPECT_STREQ(e.what(),
+                   "list.yaml: not a valid settings file: the top level is not a map of "
+                   "'key: value' lines");
+    }
+  }
+}
+
 TEST(SettingsFile, MissingOrBrokenFileIsAClearError) {
   lumaslam::test::TempDir dir("settings");
   EXPECT_THROW((void)SettingsFile::open(dir.path() / "nope.yaml"), Error);
