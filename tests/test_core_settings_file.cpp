@@ -84,6 +84,19 @@ TEST(SettingsFile, TopLevelThatIsNoMapIsAClearError) {
   }
 }
 
+TEST(SettingsFile, StdExceptionOfOpenCvsParserIsAClearError) {
+  // Found by fuzz/settings_fuzz.cpp: these bytes make cv::FileStorage throw std::length_error.
+  const auto file = std::filesystem::path(LUMASLAM_SOURCE_DIR) /
+                    "fuzz/regressions/settings/opencv_parser_length_error.yaml";
+  try {
+    (void)SettingsFile::open(file);
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_EQ(std::string(e.what()), file.string() + ": not a valid settings file "
+                                                     "(basic_string::_M_create)");
+  }
+}
+
 TEST(SettingsFile, MissingOrBrokenFileIsAClearError) {
   lumaslam::test::TempDir dir("settings");
   EXPECT_THROW((void)SettingsFile::open(dir.path() / "nope.yaml"), Error);

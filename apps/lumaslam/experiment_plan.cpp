@@ -53,6 +53,8 @@ cv::FileStorage openPlan(const std::filesystem::path& file) {
     storage.open(yaml, cv::FileStorage::READ | cv::FileStorage::MEMORY);
   } catch (const cv::Exception& e) {
     fail("{}: not a valid YAML plan: {}", file.string(), e.err);
+  } catch (const std::exception& e) {  // OpenCV's parser lets some std::length_error escape
+    fail("{}: not a valid YAML plan ({})", file.string(), e.what());
   }
   if (!storage.isOpened()) fail("{}: not a valid YAML plan", file.string());
   return storage;

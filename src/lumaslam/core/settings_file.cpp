@@ -126,6 +126,8 @@ SettingsFile SettingsFile::fromString(const std::string& yaml, const std::string
     storage.open(text, cv::FileStorage::READ | cv::FileStorage::MEMORY);
   } catch (const cv::Exception& e) {
     failParse(e, origin, add_header ? 1 : 0);
+  } catch (const std::exception& e) {  // OpenCV's parser lets some std::length_error escape
+    fail("{}: not a valid settings file ({})", origin, e.what());
   }
   if (!storage.isOpened()) fail("{}: not a valid settings file", origin);
   // Every lookup indexes the top level, which cv::FileNode asserts is a map.
