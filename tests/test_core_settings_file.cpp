@@ -97,6 +97,21 @@ TEST(SettingsFile, StdExceptionOfOpenCvsParserIsAClearError) {
   }
 }
 
+TEST(SettingsFile, MatrixShapeIsCheckedBeforeOpenCvAllocatesIt) {
+  // Found by fuzz/settings_fuzz.cpp: cv::read allocated rows x cols (64 GB) from the header.
+  const auto s = SettingsFile::fromString(
+      "M: !!opencv-matrix\n  rows: 4\n  cols: 1000000000\n  dt: d\n  data: [1]\n"
+      "N: !!opencv-matrix\n  rows: 4\n  cols: x\n  dt: d\n  data: [1]\n",
+      "m.yaml");
+  try {
+    (void)s.getMatrix("M", 4, 4);
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_STREQ(e.what(), "m.yaml: key 'M': expected a 4x4 matrix, found 4x1000000000");
+  }
+  EXPECT_THROW((void)s.getMatrix("N", 4, 4), Error);
+}
+
 TEST(SettingsFile, MissingOrBrokenFileIsAClearError) {
   lumaslam::test::TempDir dir("settings");
   EXPECT_THROW((void)SettingsFile::open(dir.path() / "nope.yaml"), Error);

@@ -301,6 +301,15 @@ std::optional<cv::Mat> SettingsFile::findMatrix(std::string_view key, int rows, 
   if (n.empty() || n.isNone()) return std::nullopt;
   cv::Mat m;
   if (n.isMap()) {
+    // cv::read allocates rows x cols before it looks at the data: check the shape first.
+    const cv::FileNode n_rows = n["rows"];
+    const cv::FileNode n_cols = n["cols"];
+    if (!n_rows.isInt() || !n_cols.isInt())
+      invalid(key, fmt::format("expected a {}x{} opencv-matrix", rows, cols));
+    if (static_cast<int>(n_rows) != rows || static_cast<int>(n_cols) != cols) {
+      invalid(key, fmt::format("expected a {}x{} matrix, found {}x{}", rows, cols,
+                               static_cast<int>(n_rows), static_cast<int>(n_cols)));
+    }
     try {
       n >> m;
     } catch (const cv::Exception&) {
