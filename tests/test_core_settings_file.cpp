@@ -92,8 +92,9 @@ TEST(SettingsFile, StdExceptionOfOpenCvsParserIsAClearError) {
     (void)SettingsFile::open(file);
     FAIL() << "no error";
   } catch (const Error& e) {
-    EXPECT_EQ(std::string(e.what()), file.string() + ": not a valid settings file "
-                                                     "(basic_string::_M_create)");
+    const std::string expected =
+        file.string() + ": not a valid settings file (basic_string::_M_create)";
+    EXPECT_EQ(std::string(e.what()), expected);
   }
 }
 

@@ -132,8 +132,7 @@ SettingsFile SettingsFile::fromString(const std::string& yaml, const std::string
   if (!storage.isOpened()) fail("{}: not a valid settings file", origin);
   // Every lookup indexes the top level, which cv::FileNode asserts is a map.
   if (!storage.root().isMap()) {
-    fail("{}: not a valid settings file: the top level is not a map of 'key: value' lines",
-         origin);
+    fail("{}: not a valid settings file: the top level is not a map of 'key: value' lines", origin);
   }
   return SettingsFile(std::move(storage), origin, std::move(key_lines));
 }
