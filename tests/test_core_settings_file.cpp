@@ -207,3 +207,17 @@ TEST(SettingsFile, IntegerOutOfRangeIsReportedAsWritten) {
 }
 
 }  // namespace
+
+// OpenCV 4.6's YAML parser never returns on these (found by fuzzing, fuzz/regressions/): a
+// line that starts with the document marker "---" directly followed by text is refused first.
+TEST(SettingsFile, DocumentMarkerWithTextIsRefusedBeforeOpenCvsParserLoops) {
+  EXPECT_EQ(errorOf("----x\nS\n:"),
+            "settings.yaml: line 1: '---' (a YAML document marker) must be followed by a blank "
+            "or end the line");
+  EXPECT_EQ(errorOf("%YAML:1.0\nCamera.fx: 1\n---YAML: 2\n"),
+            "settings.yaml: line 3: '---' (a YAML document marker) must be followed by a blank "
+            "or end the line");
+  // The marker alone, with blanks or a comment, is YAML as ORB-SLAM3 files write it.
+  const auto s = SettingsFile::fromString("%YAML:1.0\n---  # settings\nCamera.fx: 535.4\n");
+  EXPECT_DOUBLE_EQ(s.get<double>("Camera.fx"), 535.4);
+}

@@ -117,7 +117,10 @@ SettingsFile SettingsFile::fromString(const std::string& yaml, const std::string
   std::string text = yaml;
   if (text.starts_with(kUtf8Bom)) text.erase(0, kUtf8Bom.size());
   std::map<std::string, KeyLine> key_lines;
-  if (isYaml(text)) key_lines = scanKeyLines(text, origin);
+  if (isYaml(text)) {
+    requireBlankAfterDocumentMarkers(text, origin);
+    key_lines = scanKeyLines(text, origin);
+  }
   // cv::FileStorage needs the %YAML header; ORB-SLAM files have it, hand-written ones may not.
   const bool add_header = isYaml(text) && !text.starts_with("%YAML");
   if (add_header) text = "%YAML:1.0\n" + text;

@@ -148,4 +148,21 @@ std::map<std::string, KeyLine> scanKeyLines(std::string_view text, const std::st
   return scanner.take();
 }
 
+void requireBlankAfterDocumentMarkers(std::string_view text, const std::string& origin) {
+  int number = 1;
+  for (std::size_t start = 0; start < text.size(); ++number) {
+    auto end = text.find('\n', start);
+    if (end == std::string_view::npos) end = text.size();
+    const std::string_view line = text.substr(start, end - start);
+    start = end + 1;
+    // "---", "--- # ..." and "--- !tag" are markers; "----x" and "---YAML" are what loops.
+    if (!line.starts_with("---") || line.size() == 3) continue;
+    if (line[3] == ' ' || line[3] == '\t' || line[3] == '\r') continue;
+    fail(
+        "{}: line {}: '---' (a YAML document marker) must be followed by a blank or end the "
+        "line",
+        origin, number);
+  }
+}
+
 }  // namespace lumaslam::core

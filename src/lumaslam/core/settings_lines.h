@@ -21,4 +21,10 @@ std::string_view withoutComment(std::string_view line);
 // B" when a key is set twice.
 std::map<std::string, KeyLine> scanKeyLines(std::string_view text, const std::string& origin);
 
+// Before cv::FileStorage reads `text`: OpenCV 4.6's YAML parser never returns on some lines
+// that start with the document marker "---" followed by text ("----x", "---YAML:..."; found
+// by fuzzing, fuzz/regressions/settings/). Throws Error "ORIGIN: line N: ..." for a line that
+// starts with "---" directly followed by anything but a blank.
+void requireBlankAfterDocumentMarkers(std::string_view text, const std::string& origin);
+
 }  // namespace lumaslam::core
