@@ -134,8 +134,8 @@ strict_settings (unknown settings keys are an error).)doc")
           py::arg("image"), py::arg("depth"), py::arg("timestamp"),
           "Tracks one colour/gray image with its registered depth; returns a TrackResult.")
       .def("save_map", &System::saveMap, py::arg("file"), py::call_guard<py::gil_scoped_release>(),
-           "Finishes mapping and writes the map file atomically; no frames are tracked after it "
-           "(reset() to go on).")
+           "Lets mapping handle every queued keyframe, then writes the map file atomically; "
+           "tracking goes on after it.")
       .def("load_map", &System::loadMap, py::arg("file"), py::call_guard<py::gil_scoped_release>(),
            "Before the first frame: loads a map made with this camera, ORB settings and "
            "vocabulary; the first frame relocalizes in it.")

@@ -207,5 +207,76 @@ TEST(SystemMapFile, LoadAfterTheFirstFrameIsAnError) {
   EXPECT_THROW(system.loadMap(room.file), Error);
 }
 
+// Keyframes of a map file, as a fresh Pipeline loads them.
+std::size_t keyFramesIn(const std::filesystem::path& file, const io::Settings& settings) {
+  Pipeline reader(settings, quietOptions());
+  reader.loadMap(file);
+  return reader.keyFrameCount();
+}
+
+// A map saved mid-run holds every keyframe made so far, and the run goes on exactly as it
+// would have without the save (sequential: the same poses to the bit).
+TEST(SystemMapFile, SavingMidRunChangesNothingAndTrackingGoesOn) {
+  TempDir dir("map_file");
+  const int frames = 120;
+  const int save_at = 60;
+  const synth::SequenceRenderer sequence(synth::findPreset("xyz-rgbd"), frames, 1);
+  const auto settings = presetSettings(sequence);
+  Pipeline unsaved(settings, quietOptions());
+  Pipeline saved(settings, quietOptions());
+  std::size_t keyframes_at_save = 0;
+  for (int i = 0; i < frames; ++i) {
+    if (i == save_at) {
+      keyframes_at_save = unsaved.keyFrameCount();
+      saved.saveMap(dir.path() / "mid.map");
+    }
+    const auto frame = sensorFrame(sequence.render(i));
+    const auto expected = unsaved.track(frame);
+    const auto result = saved.track(frame);
+    EXPECT_EQ(result.outcome.state, expected.outcome.state) << "frame " << i;
+  }
+  saved.saveMap(dir.path() / "end.map");
+  const auto a = unsaved.frameTrajectory();
+  const auto b = saved.frameTrajectory();
+  ASSERT_EQ(a.size(), b.size());
+  EXPECT_EQ(a.size(), static_cast<std::size_t>(frames));
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    EXPECT_TRUE(a[i].T_w_c.matrix() == b[i].T_w_c.matrix()) << "frame " << i;
+  }
+  EXPECT_EQ(keyFramesIn(dir.path() / "mid.map", settings), keyframes_at_save);
+  EXPECT_GT(keyframes_at_save, 2U);
+  EXPECT_EQ(keyFramesIn(dir.path() / "end.map", settings), saved.keyFrameCount());
+  EXPECT_GT(saved.keyFrameCount(), keyframes_at_save);
+}
+
+// Threaded: saveMap waits for the mapper's queue, so the file has every keyframe the run has at
+// that moment, and tracking goes on after it.
+TEST(SystemMapFile, ThreadedSaveHoldsEveryQueuedKeyframe) {
+  TempDir dir("map_file");
+  const int frames = 120;
+  const synth::SequenceRenderer sequence(synth::findPreset("xyz-rgbd"), frames, 1);
+  const auto settings = presetSettings(sequence);
+  PipelineOptions threaded = quietOptions();
+  threaded.sequential = false;
+  Pipeline system(settings, threaded);
+  int tracked = 0;
+  std::vector<std::size_t> saved_keyframes;
+  for (int i = 0; i < frames; ++i) {
+    const auto result = system.track(sensorFrame(sequence.render(i)));
+    if (result.outcome.state == track::TrackingState::Ok) ++tracked;
+    if (i == 40 || i == 80) {
+      const auto file = dir.path() / ("at_" + std::to_string(i) + ".map");
+      system.saveMap(file);
+      const std::size_t in_run = system.keyFrameCount();
+      saved_keyframes.push_back(keyFramesIn(file, settings));
+      EXPECT_EQ(saved_keyframes.back(), in_run) << file;
+    }
+  }
+  system.shutdown();
+  EXPECT_GE(tracked, frames - 1);
+  ASSERT_EQ(saved_keyframes.size(), 2U);
+  EXPECT_GT(saved_keyframes[1], saved_keyframes[0]);
+}
+
 }  // namespace
 }  // namespace lumaslam::test

@@ -194,6 +194,14 @@ void Pipeline::shutdown() {
   if (loop_closer_) loop_closer_->shutdown();  // after the mapper: it feeds the closer
 }
 
+// The file then holds everything tracked so far: keyframes still queued are in the map, loops
+// found among them are closed and a running global bundle adjustment is written back. The
+// tracker is not running meanwhile (one caller), so no new keyframe can arrive.
+void Pipeline::finishQueuedMapWork() {
+  if (mapper_) mapper_->waitUntilIdle();
+  if (loop_closer_) loop_closer_->waitUntilIdle();  // after the mapper: it feeds the closer
+}
+
 Pipeline::Images Pipeline::prepareImages(const cv::Mat& image, FrameTiming& timing,
                                          const enhance::EnhancementPlan* plan) {
   if (image.empty()) fail("empty image");
@@ -373,7 +381,7 @@ void Pipeline::removeDynamicFeatures(track::Frame& frame, const cv::Mat& depth_m
 }
 
 FrameResult Pipeline::track(const SensorFrame& input) {
-  if (shut_down_) fail("frame {}: track() after shutdown() or saveMap()", input.index);
+  if (shut_down_) fail("frame {}: track() after shutdown()", input.index);
   const auto start = Clock::now();
   FrameResult result;
   std::optional<track::Frame> frame;
@@ -504,7 +512,7 @@ map::MapFingerprint Pipeline::mapFingerprint() const {
 }
 
 void Pipeline::saveMap(const std::filesystem::path& file) {
-  shutdown();
+  finishQueuedMapWork();
   const auto start = Clock::now();
   std::lock_guard lock(map_->updateMutex());
   map::saveMapFile(*map_, mapFingerprint(), file);

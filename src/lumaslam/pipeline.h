@@ -120,8 +120,9 @@ class Pipeline {
   void shutdown();
 
   // Map files (map/map_file.h, docs/maps.md); both throw Error naming the file and the problem.
-  // saveMap first finishes local mapping and loop closing (shutdown()), then writes the atlas
-  // atomically. loadMap only before the first frame: the map must be empty, the file made with
+  // saveMap waits until local mapping and loop closing have handled every queued keyframe
+  // (and a running global BA is written back), then writes the atlas atomically; tracking can
+  // go on after it. loadMap only before the first frame: the map must be empty, the file made with
   // this camera, ORB settings and vocabulary; tracking then starts lost, so that the first
   // frame relocalizes in the loaded map.
   void saveMap(const std::filesystem::path& file);
@@ -167,6 +168,7 @@ class Pipeline {
     cv::Mat gray;      // for ORB features
     cv::Mat detector;  // for the detector: raw or enhanced colour (Detector.image)
   };
+  void finishQueuedMapWork();
   // With `plan`, the image is enhanced with it instead of its own (stereo shared plans).
   Images prepareImages(const cv::Mat& image, FrameTiming& timing,
                        const enhance::EnhancementPlan* plan = nullptr);

@@ -76,8 +76,9 @@ class LUMASLAM_API System {
   TrackResult trackStereo(const cv::Mat& left, const cv::Mat& right, double timestamp);
   TrackResult trackRgbd(const cv::Mat& image, const cv::Mat& depth, double timestamp);
 
-  // Map files (docs/maps.md). saveMap finishes local mapping and loop closing first, after
-  // which the System tracks no more frames (reset() to go on). loadMap only before the first
+  // Map files (docs/maps.md). saveMap first lets local mapping and loop closing handle every
+  // queued keyframe, so the file holds all frames tracked so far; tracking goes on after it
+  // (save as often as wanted). loadMap only before the first
   // frame; the file must have been made with this camera, ORB settings and vocabulary.
   void saveMap(const std::filesystem::path& file);
   void loadMap(const std::filesystem::path& file);
