@@ -22,3 +22,4 @@ target_link_libraries(test_synth_people PRIVATE lumaslam_detect opencv_imgcodecs
 target_link_libraries(test_enhance_stereo PRIVATE lumaslam)
 target_link_libraries(test_viewer_http PRIVATE PkgConfig::HTTPLIB opencv_imgcodecs)
 target_link_libraries(test_cli_viewer PRIVATE PkgConfig::HTTPLIB opencv_imgcodecs opencv_imgproc)
+target_link_libraries(test_mapping_backlog PRIVATE lumaslam_synth)

@@ -2,6 +2,8 @@
 
 #include <atomic>
 #include <chrono>
+#include <future>
+#include <thread>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -25,6 +27,26 @@ TEST(CoreWorkQueue, SequentialModeHandlesItemsInOrderInTheCallersThread) {
   queue.processPending();
   EXPECT_EQ(handled, (std::vector<int>{0, 1, 2, 3, 4}));
   EXPECT_FALSE(other_thread);
+  EXPECT_TRUE(queue.idle());
+}
+
+// The Pipeline's bounded wait for a busy mapper (TrackerParams::wait_for_busy_mapper).
+TEST(CoreWorkQueue, WaitUntilIdleForReportsWhetherTheQueueGotIdle) {
+  std::promise<void> release;
+  std::shared_future<void> released = release.get_future().share();
+  std::atomic<bool> started{false};
+  WorkQueue<int> queue([&](int&) {
+    started = true;
+    released.wait();
+  });
+  EXPECT_TRUE(
+      queue.waitUntilIdleFor(std::chrono::milliseconds(0)));  // no thread: nothing to wait for
+  queue.startThread();
+  queue.push(1);
+  while (!started) std::this_thread::yield();
+  EXPECT_FALSE(queue.waitUntilIdleFor(std::chrono::milliseconds(20)));  // handler blocked
+  release.set_value();
+  EXPECT_TRUE(queue.waitUntilIdleFor(std::chrono::seconds(60)));
   EXPECT_TRUE(queue.idle());
 }
 

@@ -1,5 +1,6 @@
 #include "lumaslam/pipeline.h"
 
+#include <algorithm>
 #include <chrono>
 #include <functional>
 
@@ -162,6 +163,10 @@ Pipeline::Pipeline(const io::Settings& settings, const PipelineOptions& options)
   tracker_params.inlier_reference_half_life = tracker_params.max_frames_between_keyframes;
   tracker_params.new_map_after_s = settings_.system.newMapAfter;
   tracker_params.monocular.two_view.threaded = !sequential_;
+  // Only monocular keyframes depend on the mapper for all their new points; RGB-D and stereo
+  // ones bring their own from depth (docs/tracking.md "Keyframes while the mapper is busy").
+  tracker_params.wait_for_busy_mapper = settings_.sensor == io::SensorType::Monocular;
+  wait_for_busy_mapper_ = tracker_params.wait_for_busy_mapper;
   tracker_params.motion_evidence.enabled =
       options.motion_evidence.value_or(settings_.dynamic.motionEvidenceFor(settings_.sensor));
   if (stereo) {
@@ -412,14 +417,30 @@ FrameResult Pipeline::track(const SensorFrame& input) {
   if (rectifier_ && result.outcome.T_w_c) {
     result.outcome.T_w_c = toCalibratedCamera(*result.outcome.T_w_c);
   }
+  stage = Clock::now();
   if (sequential_) {
-    stage = Clock::now();
     mapper_->processPending();
     if (loop_closer_) loop_closer_->processPending();
-    result.timing.mapping = msSince(stage);
+  } else if (result.outcome.keyframe_waits_for_mapper ||
+             (result.outcome.new_keyframe && wait_for_busy_mapper_)) {
+    waitForBusyMapper(input.timestamp, start);
   }
+  result.timing.mapping = msSince(stage);
   result.timing.total = msSince(start);
+  previous_timestamp_ = input.timestamp;
   return result;
+}
+
+// A keyframe is due and the mapper still busy: give it what is left of this frame's interval,
+// as a camera would, so that a run faster than the camera makes the keyframes a live one makes
+// (TrackerParams::wait_for_busy_mapper). Outside the tracker's map lock: the mapper may need it.
+void Pipeline::waitForBusyMapper(double timestamp, Clock::time_point frame_start) {
+  if (!previous_timestamp_) return;
+  constexpr double kMaxInterval = 0.2;  // s: a gap in the stream is not a frame interval
+  const double interval = std::clamp(timestamp - *previous_timestamp_, 0.0, kMaxInterval);
+  const auto budget = std::chrono::duration<double>(interval) - (Clock::now() - frame_start);
+  if (budget.count() <= 0) return;
+  mapper_->waitUntilIdleFor(std::chrono::duration_cast<std::chrono::microseconds>(budget));
 }
 
 // Tracking runs in the rectified left camera, p_rect = R_rect_c1 * p_c1 (same centre): the

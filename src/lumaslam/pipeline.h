@@ -3,6 +3,7 @@
 // poses. Owns the map, the tracker (runs in the caller's thread), the local mapper, the loop
 // closer and the detection worker (own threads, or inline when System.sequential, which also
 // runs the per-frame side jobs inline). Not installed: embed lumaslam through system.h.
+#include <chrono>
 #include <filesystem>
 #include <functional>
 #include <map>
@@ -169,6 +170,7 @@ class Pipeline {
     cv::Mat detector;  // for the detector: raw or enhanced colour (Detector.image)
   };
   void finishQueuedMapWork();
+  void waitForBusyMapper(double timestamp, std::chrono::steady_clock::time_point frame_start);
   // With `plan`, the image is enhanced with it instead of its own (stereo shared plans).
   Images prepareImages(const cv::Mat& image, FrameTiming& timing,
                        const enhance::EnhancementPlan* plan = nullptr);
@@ -199,6 +201,8 @@ class Pipeline {
   std::string vocabulary_description_ = "none";
   std::uint64_t vocabulary_fingerprint_ = 0;  // loop::vocabularyFingerprint, 0 without one
   bool shut_down_ = false;
+  std::optional<double> previous_timestamp_;  // of the last tracked frame (any outcome)
+  bool wait_for_busy_mapper_ = true;          // TrackerParams::wait_for_busy_mapper
   std::unique_ptr<track::FrameBuilder> frame_builder_;
   std::unique_ptr<mapping::LocalMapper> mapper_;
   std::unique_ptr<track::Tracker> tracker_;

@@ -54,7 +54,13 @@ class WorkQueue {
   // Threaded mode: blocks until the queue is empty and no item is being handled.
   void waitUntilIdle() {
     std::unique_lock lock(mutex_);
-    changed_.wait(lock, [this] { return (items_.empty() && !busy_) || !thread_.joinable(); });
+    changed_.wait(lock, [this] { return idleLocked(); });
+  }
+  // The same, for at most `timeout`; returns whether the queue is idle.
+  template <typename Duration>
+  bool waitUntilIdleFor(Duration timeout) {
+    std::unique_lock lock(mutex_);
+    return changed_.wait_for(lock, timeout, [this] { return idleLocked(); });
   }
 
   // Stops and joins the thread (idempotent); queued items are handled first.
@@ -78,6 +84,7 @@ class WorkQueue {
   }
 
  private:
+  bool idleLocked() const { return (items_.empty() && !busy_) || !thread_.joinable(); }
   std::optional<T> take() {
     std::lock_guard lock(mutex_);
     if (items_.empty()) return std::nullopt;

@@ -71,6 +71,10 @@ void LocalMapper::waitUntilIdle() {
   queue_.waitUntilIdle();
 }
 
+bool LocalMapper::waitUntilIdleFor(std::chrono::microseconds timeout) {
+  return queue_.waitUntilIdleFor(timeout);
+}
+
 void LocalMapper::process(const std::shared_ptr<map::KeyFrame>& keyframe) {
   {
     std::lock_guard processing(processing_mutex_);
@@ -145,13 +149,18 @@ void LocalMapper::triangulateNewPoints(const std::shared_ptr<map::KeyFrame>& key
   const double ratio_factor = 1.5 * pyramid_->scaleFactor();
   const auto& f1 = keyframe->features();
 
+  int neighbours_used = 0;
   for (const auto& neighbour : neighbours) {
-    if (queuedKeyFrames() > 0) return;  // keep up with tracking first
+    // Keep up with tracking first, but as ORB-SLAM only after the best usable neighbour: a
+    // mapper that falls behind (a loaded machine) must still give every keyframe new points,
+    // or monocular tracking runs out of them and is lost.
+    if (neighbours_used > 0 && queuedKeyFrames() > 0) return;
     const SE3 T_c2_w = neighbour->T_c_w();
     const Eigen::Vector3d C2 = neighbour->center();
     if ((C2 - C1).norm() < std::max(baseline, 1e-3)) continue;
     // Monocular: a baseline below 1% of the scene depth triangulates nothing useful.
     if (baseline == 0.0 && (C2 - C1).norm() < 0.01 * medianSceneDepth(*neighbour)) continue;
+    ++neighbours_used;
     const auto& f2 = neighbour->features();
     const Eigen::Matrix3d F21 = fundamental21(T_c1_w, T_c2_w, k);
     const auto pairs = matchForTriangulation(*keyframe, *neighbour, F21);

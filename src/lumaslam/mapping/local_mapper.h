@@ -5,6 +5,7 @@
 // Threaded: its own thread fed through a queue. Sequential (System.sequential): the caller
 // runs processPending() after each tracked frame, outside the tracker's map lock.
 #include <atomic>
+#include <chrono>
 #include <functional>
 #include <list>
 #include <memory>
@@ -48,6 +49,8 @@ class LocalMapper : public track::KeyFrameSink {
   void processPending();
   // Threaded mode: block until the queue is empty and the mapper idle.
   void waitUntilIdle();
+  // The same for at most `timeout`; returns whether the mapper is idle.
+  bool waitUntilIdleFor(std::chrono::microseconds timeout);
   // Stops and joins the thread (idempotent); queued keyframes are processed first.
   void shutdown();
 

@@ -88,7 +88,7 @@ TrackingOutcome Tracker::track(Frame frame) {
 bool Tracker::estimatePose(TrackingOutcome& outcome) {
   if (state_ == TrackingState::NotInitialized) {
     if (localization_only_) return false;  // no map to localize in
-    const bool ok = initialize();  // monocular: over several frames
+    const bool ok = initialize();          // monocular: over several frames
     outcome.new_keyframe = ok;
     outcome.new_map = ok && active_map_ != 0;
     if (ok) outcome.step = TrackingStep::Initialization;
@@ -125,11 +125,14 @@ bool Tracker::estimatePose(TrackingOutcome& outcome) {
   }
   state_ = ok ? TrackingState::Ok : TrackingState::Lost;
   if (!ok) outcome.step = TrackingStep::None;
-  if (ok && needNewKeyFrame()) {
+  if (!ok) return false;
+  const auto decision = needNewKeyFrame();
+  if (decision == KeyFrameDecision::Now) {
     createNewKeyFrame();
     outcome.new_keyframe = true;
   }
-  return ok;
+  outcome.keyframe_waits_for_mapper = decision == KeyFrameDecision::WhenMapperIdle;
+  return true;
 }
 
 void Tracker::recordTrackedFrame(TrackingState previous, bool map_started,
@@ -772,8 +775,8 @@ void Tracker::cullDynamicPoints() {
   }
 }
 
-bool Tracker::needNewKeyFrame() const {
-  if (localization_only_) return false;
+Tracker::KeyFrameDecision Tracker::needNewKeyFrame() const {
+  if (localization_only_) return KeyFrameDecision::No;
   const std::size_t keyframes =
       map_->keyFrameCountOf(reference_ ? reference_->mapId() : active_map_);
   const int min_observations = keyframes <= 2 ? 2 : 3;
@@ -796,14 +799,18 @@ bool Tracker::needNewKeyFrame() const {
   const double ratio = keyframes < 2 ? 0.4 : (camera_.bf > 0.0 ? 0.75 : 0.9);
   const std::size_t since = current_.index - last_keyframe_frame_;
   const bool c1a = since >= static_cast<std::size_t>(params_.max_frames_between_keyframes);
-  const bool c1b =
-      since >= static_cast<std::size_t>(params_.min_frames_between_keyframes) && mapper_idle;
+  const bool c1b_when_idle =
+      since >= static_cast<std::size_t>(params_.min_frames_between_keyframes);
   const bool c1c = inliers_ < reference_matches * 0.25 || need_close;
   const bool c2 = (inliers_ < reference_matches * ratio || need_close) && inliers_ > 15;
-  if (!((c1a || c1b || c1c) && c2)) return false;
-  if (mapper_idle) return true;
+  if (!c2) return KeyFrameDecision::No;
+  if (mapper_idle && (c1a || c1b_when_idle || c1c)) return KeyFrameDecision::Now;
+  if (!(c1a || c1c)) {
+    return c1b_when_idle && params_.wait_for_busy_mapper ? KeyFrameDecision::WhenMapperIdle
+                                                         : KeyFrameDecision::No;
+  }
   mapper_.interruptBundleAdjustment();
-  return mapper_.queuedKeyFrames() < 3;
+  return mapper_.queuedKeyFrames() < 3 ? KeyFrameDecision::Now : KeyFrameDecision::No;
 }
 
 void Tracker::createNewKeyFrame() {

@@ -39,6 +39,14 @@ struct TrackerParams {
   int min_initial_features = 500;         // features with depth needed to start a map
   int max_frames_between_keyframes = 30;  // camera fps, as ORB-SLAM
   int min_frames_between_keyframes = 0;
+  // Threaded mapping: after a frame that made a keyframe, or wanted one while the mapper was
+  // still busy, the Pipeline gives the mapper what is left of the frame interval (the time a
+  // camera would have given it) before the next frame. Without that, a run faster than the
+  // camera, or on a loaded machine, gets keyframes only every max_frames_between_keyframes:
+  // monocular KITTI 07 threaded had 40 keyframes where the sequential run has 126, a third of
+  // its inliers, and lost tracking on a loaded machine (docs/tracking.md). The Pipeline sets
+  // it for monocular only.
+  bool wait_for_busy_mapper = false;
   int min_local_map_inliers = 30;
   // A frame also needs this fraction of the local-map inliers of the recently tracked frames
   // (the median of the last `inlier_reference_frames`), a reference that halves every
@@ -86,6 +94,7 @@ struct TrackingOutcome {
   TrackingStep step = TrackingStep::None;  // None when lost
   map::MapId map = 0;                      // the map the frame was tracked in (when tracked)
   int moving_features = 0;                 // features the motion test found moving
+  bool keyframe_waits_for_mapper = false;  // a keyframe was due, the mapper was busy
   double motion_evidence_ms = 0.0;         // the motion test's time
 };
 
@@ -141,7 +150,8 @@ class Tracker {
   bool relocalize();
   bool trackLocalMap(TrackingOutcome& outcome);
   bool enoughInliers() const;
-  bool needNewKeyFrame() const;
+  enum class KeyFrameDecision { No, Now, WhenMapperIdle };
+  KeyFrameDecision needNewKeyFrame() const;
   void createNewKeyFrame();
 
   int searchLastFrame(float radius);
