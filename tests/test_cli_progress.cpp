@@ -1,5 +1,6 @@
-// Progress lines (issue 18): `run` and `synth` show frames, rate and ETA on a terminal (here a
-// pseudo-terminal made by util-linux `script`) and print no progress at all into a pipe.
+// Progress lines (issue 18): `run`, `synth` and `vocab train` show frames, rate and ETA on a
+// terminal (here a pseudo-terminal made by util-linux `script`) and print no progress at all into a
+// pipe.
 #include <gtest/gtest.h>
 
 #include "test_cli.h"
@@ -38,6 +39,19 @@ TEST_F(CliProgress, OnATerminalSynthAndRunShowFramesRateAndEta) {
   EXPECT_NE(run.find("\rframe 80/80"), std::string::npos) << run;
   EXPECT_NE(run.find("  ok"), std::string::npos) << "the tracking state: " << run;
   EXPECT_NE(run.find("ETA"), std::string::npos) << run;
+}
+
+TEST_F(CliProgress, OnATerminalVocabTrainShowsImagesExtracted) {
+  ASSERT_EQ(runCli("synth " + data_ + " --preset xyz-rgbd --frames 12").exit_code, 0);
+  const std::string train =
+      runOnTerminal("vocab train " + data_ + "/rgb --out " + (dir_.path() / "v.bin").string() +
+                    " --k 4 --levels 2 --max-images 12");
+  EXPECT_NE(train.find("\rimage 12/12"), std::string::npos) << train;
+  EXPECT_NE(train.find("extracting"), std::string::npos) << train;
+  const auto piped = runCli("vocab train " + data_ + "/rgb --out " +
+                            (dir_.path() / "w.bin").string() + " --k 4 --levels 2");
+  ASSERT_EQ(piped.exit_code, 0) << piped.output;
+  EXPECT_EQ(piped.output.find('\r'), std::string::npos) << piped.output;
 }
 
 TEST_F(CliProgress, InAPipeThereIsNoProgressLine) {

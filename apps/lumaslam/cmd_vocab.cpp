@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -20,6 +21,7 @@
 #include "lumaslam/feature/orb_extractor.h"
 #include "lumaslam/loop/vocabulary_io.h"
 #include "lumaslam/loop/vocabulary_training.h"
+#include "progress_line.h"
 #include "vocab_eval.h"
 
 namespace lumaslam::cli {
@@ -78,6 +80,9 @@ int runTrain(const VocabOptions& options) {
   std::vector<cv::Mat> descriptors;
   std::size_t count = 0;
   const auto start = std::chrono::steady_clock::now();
+  // Ended before the training's own log lines; the total is known only with --max-images.
+  auto progress = std::make_optional<ProgressLine>(
+      "image", options.max_images > 0 ? static_cast<std::size_t>(options.max_images) : 0);
   for (const auto& input : options.inputs) {
     const int remaining =
         options.max_images > 0 ? options.max_images - static_cast<int>(descriptors.size()) : 0;
@@ -87,9 +92,11 @@ int runTrain(const VocabOptions& options) {
     forEachInputImage(path, remaining, stride, [&](const std::string& name, const cv::Mat& image) {
       descriptors.push_back(extractor.extract(toGray(image, name)).descriptors);
       count += static_cast<std::size_t>(descriptors.back().rows);
+      progress->update(descriptors.size(), "extracting");
     });
     spdlog::info("{}: {} images (every {})", path, descriptors.size() - before, stride);
   }
+  progress.reset();
   if (descriptors.empty()) fail("no images found in the inputs");
   spdlog::info("{} images, {} ORB descriptors in {:.1f} s", descriptors.size(), count,
                secondsSince(start));
