@@ -97,15 +97,21 @@ const bool registered = registerCommand(
                      "Run N times into OUT/run_K and report the min/median/max spread")
           ->check(wholeNumber(1, 1000));
       auto report = std::make_shared<bool>(false);
+      auto print_settings = std::make_shared<bool>(false);
+      cmd.add_flag("--print-settings", *print_settings,
+                   "Print the settings the run would use (ORBextractor, System, Dynamic, "
+                   "Tracking, LocalMapping, Loop; docs/settings.md) and exit");
       cmd.add_flag("--report", *report,
                    "At the end, write OUT/report.html (`lumaslam report OUT`, docs/report.md)");
-      return [options, max_frames, enhance, detector, repeats, vocabulary, on_bad_frame, report] {
+      return [options, max_frames, enhance, detector, repeats, vocabulary, on_bad_frame, report,
+              print_settings] {
         options->on_bad_frame =
             *on_bad_frame == "stop" ? RunOptions::BadFrame::Stop : RunOptions::BadFrame::Skip;
         if (*max_frames > 0) options->max_frames = *max_frames;
         if (!enhance->empty()) options->enhance_preset = *enhance;
         if (!detector->empty()) options->detector = *detector;
         if (!vocabulary->empty()) options->vocabulary = *vocabulary;
+        if (*print_settings) return printEffectiveSettings(*options);
         if (options->localization && !options->load_map) {
           fail("--localization needs a map to localize in (--load-map FILE)");
         }

@@ -17,6 +17,7 @@
 #include "lumaslam/io/trajectory_io.h"
 #include "lumaslam/loop/loop_closer.h"
 #include "lumaslam/pipeline.h"
+#include "lumaslam/pipeline_params.h"
 #include "progress_line.h"
 #include "run_manifest.h"
 #include "run_viewer.h"
@@ -185,8 +186,8 @@ nlohmann::json summaryOf(const RunOptions& options, const std::filesystem::path&
                             {"map_points", system.mapPointCount()},
                             {"ms_per_frame", {{"mean", mean}, {"median", median(loop.totals)}}}};
   // The --enhance override, null when Enhancement.preset of the settings applies.
-  summary["enhance_preset"] = options.enhance_preset ? nlohmann::json(*options.enhance_preset)
-                                                     : nlohmann::json(nullptr);
+  summary["enhance_preset"] =
+      options.enhance_preset ? nlohmann::json(*options.enhance_preset) : nlohmann::json(nullptr);
   summary["detector"] = {{"name", system.detectorDescription()},
                          {"dropped_features_per_frame", loop.dropped_sum / frames},
                          {"wait_ms_per_frame", loop.wait_sum / frames}};
@@ -247,9 +248,9 @@ void evaluateAgainstGroundTruth(io::DatasetReader& reader, const io::Settings& s
 // docs/results.md
 void removeEarlierOutputs(const std::filesystem::path& out) {
   std::error_code ec;
-  for (const char* name : {"trajectory.txt", "keyframes.txt", "timing.csv", "summary.json",
-                           "evaluation.svg", "repeatability.json", "manifest.json",
-                           "report.html"}) {
+  for (const char* name :
+       {"trajectory.txt", "keyframes.txt", "timing.csv", "summary.json", "evaluation.svg",
+        "repeatability.json", "manifest.json", "report.html"}) {
     if (std::filesystem::is_regular_file(out / name, ec)) std::filesystem::remove(out / name, ec);
   }
   for (const auto& entry : std::filesystem::directory_iterator(out, ec)) {
@@ -261,6 +262,24 @@ void removeEarlierOutputs(const std::filesystem::path& out) {
 }
 
 namespace {
+
+std::filesystem::path settingsPathOf(const RunOptions& options) {
+  // An unknown dataset KIND is reported before the settings file it would point to.
+  if (!options.settings.empty()) return options.settings;
+  return io::datasetPathOf(options.dataset) / "settings.yaml";
+}
+
+PipelineOptions pipelineOptionsOf(const RunOptions& options) {
+  PipelineOptions pipeline;
+  pipeline.enhance_preset = options.enhance_preset;
+  pipeline.detector = options.detector;
+  if (options.sequential) pipeline.sequential = true;
+  pipeline.vocabulary = options.vocabulary;
+  if (options.no_loop_closing) pipeline.loop_closing = false;
+  if (options.no_motion_evidence) pipeline.motion_evidence = false;
+  pipeline.strict_settings = options.strict_settings;
+  return pipeline;
+}
 
 // Last: its presence says every result above was written.
 void writeManifest(const RunOptions& options, const std::string& status,
@@ -274,10 +293,17 @@ void writeManifest(const RunOptions& options, const std::string& status,
 
 }  // namespace
 
+int printEffectiveSettings(const RunOptions& options) {
+  const auto settings_path = settingsPathOf(options);
+  const auto settings = io::loadSettings(settings_path);
+  std::printf("%%YAML:1.0\n# effective values of %s (lumaslam run --print-settings)\n%s",
+              settings_path.string().c_str(),
+              effectiveSettings(settings, pipelineOptionsOf(options)).c_str());
+  return 0;
+}
+
 int runPipeline(const RunOptions& options) {
-  auto settings_path = options.settings;
-  // An unknown dataset KIND is reported before the settings file it would point to.
-  if (settings_path.empty()) settings_path = io::datasetPathOf(options.dataset) / "settings.yaml";
+  const auto settings_path = settingsPathOf(options);
   const auto settings = io::loadSettings(settings_path);
   io::ReaderOptions reader_options;
   reader_options.max_frames = options.max_frames;
@@ -293,15 +319,7 @@ int runPipeline(const RunOptions& options) {
   io::requireWritableFolder(options.out);
   removeEarlierOutputs(options.out);
 
-  PipelineOptions system_options;
-  system_options.enhance_preset = options.enhance_preset;
-  system_options.detector = options.detector;
-  if (options.sequential) system_options.sequential = true;
-  system_options.vocabulary = options.vocabulary;
-  if (options.no_loop_closing) system_options.loop_closing = false;
-  if (options.no_motion_evidence) system_options.motion_evidence = false;
-  system_options.strict_settings = options.strict_settings;
-  Pipeline system(settings, system_options);
+  Pipeline system(settings, pipelineOptionsOf(options));
   if (options.load_map) system.loadMap(*options.load_map);
   if (options.localization) system.setLocalizationMode(true);
   const std::size_t loaded_keyframes = system.keyFrameCount();

@@ -45,4 +45,9 @@ void removeEarlierOutputs(const std::filesystem::path& out);
 // input found before the first frame and for output that cannot be written.
 int runPipeline(const RunOptions& options);
 
+// `run --print-settings`: prints the settings the run would use (the file's values over the
+// defaults for its sensor, with the command line's overrides) as settings-file lines; runs
+// nothing. Returns 0.
+int printEffectiveSettings(const RunOptions& options);
+
 }  // namespace lumaslam::cli

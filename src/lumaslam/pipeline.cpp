@@ -22,6 +22,7 @@
 #include "lumaslam/loop/vocabulary_choice.h"
 #include "lumaslam/loop/vocabulary_io.h"
 #include "lumaslam/mapping/local_mapper.h"
+#include "lumaslam/pipeline_params.h"
 #include "lumaslam/track/feature_subset.h"
 #include "lumaslam/track/frame_builder.h"
 
@@ -66,6 +67,18 @@ Pipeline::Pipeline(const io::Settings& settings, const PipelineOptions& options)
       orb_settings_(orbSettingsOf(settings_)),
       sequential_(options.sequential.value_or(settings.system.sequential)),
       map_(std::make_shared<map::Map>()) {
+  setUpStereoRectification();
+  setUpEnhancement(options);
+  setUpDetector(options);
+  setUpPlaceRecognition(options);
+  const auto camera = frameCameraFrom(settings_, rectifier_.get());
+  frame_builder_ = std::make_unique<track::FrameBuilder>(camera, orb_settings_, !sequential_);
+  spdlog::debug("ORB extractor: {}", orb_settings_.summary());
+  setUpStages(camera, options);
+  if (settings_.file) checkUnknownKeys(*settings_.file, options.strict_settings);
+}
+
+void Pipeline::setUpStereoRectification() {
   const bool stereo = settings_.sensor == io::SensorType::Stereo;
   if (stereo && settings_.stereo && !settings_.stereo->right && settings_.camera.hasDistortion()) {
     fail(
@@ -74,39 +87,46 @@ Pipeline::Pipeline(const io::Settings& settings, const PipelineOptions& options)
         "with zero distortion",
         settings_.path.string());
   }
-  if (stereo && settings_.stereo && settings_.stereo->right) {
-    rectifier_ =
-        std::make_unique<camera::StereoRectifier>(camera::StereoRectifier::fromSettings(settings_));
-    const auto& k = rectifier_->rectifiedCamera();
-    spdlog::info(
-        "{}: stereo pair rectified: fx={:.3f} fy={:.3f} cx={:.3f} cy={:.3f}, baseline {:.4f} m, "
-        "bf {:.3f}",
-        settings_.file ? settings_.file->origin() : settings_.path.string(), k.fx(), k.fy(), k.cx(),
-        k.cy(), rectifier_->baseline(), rectifier_->bf());
-  }
+  if (!stereo || !settings_.stereo || !settings_.stereo->right) return;
+  rectifier_ =
+      std::make_unique<camera::StereoRectifier>(camera::StereoRectifier::fromSettings(settings_));
+  const auto& k = rectifier_->rectifiedCamera();
+  spdlog::info(
+      "{}: stereo pair rectified: fx={:.3f} fy={:.3f} cx={:.3f} cy={:.3f}, baseline {:.4f} m, "
+      "bf {:.3f}",
+      settings_.file ? settings_.file->origin() : settings_.path.string(), k.fx(), k.fy(), k.cx(),
+      k.cy(), rectifier_->baseline(), rectifier_->bf());
+}
+
+void Pipeline::setUpEnhancement(const PipelineOptions& options) {
   auto enhancer_params = settings_.file ? enhance::EnhancerParams::fromSettings(*settings_.file)
                                         : enhance::EnhancerParams{};
   if (options.enhance_preset) {
     enhancer_params = enhance::EnhancerParams::forPreset(*options.enhance_preset);
   }
-  if (enhancer_params.preset != "off") {
-    enhancer_ = std::make_unique<enhance::Enhancer>(enhancer_params);
-    // Enhancement.stereo "independent": the right image gets its own enhancer (and online
-    // statistics); otherwise it is enhanced with the left image's plan (rightGray).
-    if (stereo && enhancer_params.stereo == enhance::StereoMapping::kIndependent) {
-      right_enhancer_ = std::make_unique<enhance::Enhancer>(enhancer_params);
-    }
+  if (enhancer_params.preset == "off") return;
+  enhancer_ = std::make_unique<enhance::Enhancer>(enhancer_params);
+  // Enhancement.stereo "independent": the right image gets its own enhancer (and online
+  // statistics); otherwise it is enhanced with the left image's plan (rightGray).
+  if (settings_.sensor == io::SensorType::Stereo &&
+      enhancer_params.stereo == enhance::StereoMapping::kIndependent) {
+    right_enhancer_ = std::make_unique<enhance::Enhancer>(enhancer_params);
   }
-  if (auto params = detect::detectorParamsFor(settings_.file.get(), options.detector)) {
-    // makeDetector fails here, at startup, for a missing or invalid model / box file.
-    auto worker_params = detect::WorkerParams::from(*params);
-    worker_params.threaded = !sequential_;
-    detector_ =
-        std::make_unique<detect::DetectionWorker>(detect::makeDetector(*params), worker_params);
-    detector_description_ = detect::describeChoice(params);
-    detector_params_ = std::make_unique<detect::DetectorParams>(std::move(*params));
-  }
+}
 
+void Pipeline::setUpDetector(const PipelineOptions& options) {
+  auto params = detect::detectorParamsFor(settings_.file.get(), options.detector);
+  if (!params) return;
+  // makeDetector fails here, at startup, for a missing or invalid model / box file.
+  auto worker_params = detect::WorkerParams::from(*params);
+  worker_params.threaded = !sequential_;
+  detector_ =
+      std::make_unique<detect::DetectionWorker>(detect::makeDetector(*params), worker_params);
+  detector_description_ = detect::describeChoice(params);
+  detector_params_ = std::make_unique<detect::DetectorParams>(std::move(*params));
+}
+
+void Pipeline::setUpPlaceRecognition(const PipelineOptions& options) {
   const loop::VocabularyChoice vocabulary =
       loop::chooseVocabulary(options.vocabulary.value_or(settings_.loop.vocabulary));
   if (vocabulary.file.empty()) {
@@ -115,77 +135,53 @@ Pipeline::Pipeline(const io::Settings& settings, const PipelineOptions& options)
                 "no vocabulary ({}): relocalization is off, no loop closing (name one with "
                 "Loop.vocabulary / --vocabulary or {})",
                 vocabulary.origin, loop::kVocabularyEnvironment);
-  } else {
-    const auto start = Clock::now();
-    try {
-      places_ = loop::PlaceRecognition::fromFile(vocabulary.file);
-    } catch (const Error& e) {
-      fail("{} (vocabulary from {}; 'none' runs without one)", e.what(), vocabulary.origin);
-    }
-    spdlog::info(
-        "{}: vocabulary ({}) with {} words (k {}, L {}), loaded in {:.0f} ms: "
-        "relocalization is on",
-        vocabulary.file.string(), vocabulary.origin, places_->vocabulary().wordCount(),
-        places_->vocabulary().branching(), places_->vocabulary().depth(), msSince(start));
-    map_->setKeyFrameIndex(places_);
-    vocabulary_description_ = vocabulary.file.string();
-    vocabulary_fingerprint_ = loop::vocabularyFingerprint(places_->vocabulary());
+    return;
   }
+  const auto start = Clock::now();
+  try {
+    places_ = loop::PlaceRecognition::fromFile(vocabulary.file);
+  } catch (const Error& e) {
+    fail("{} (vocabulary from {}; 'none' runs without one)", e.what(), vocabulary.origin);
+  }
+  spdlog::info(
+      "{}: vocabulary ({}) with {} words (k {}, L {}), loaded in {:.0f} ms: "
+      "relocalization is on",
+      vocabulary.file.string(), vocabulary.origin, places_->vocabulary().wordCount(),
+      places_->vocabulary().branching(), places_->vocabulary().depth(), msSince(start));
+  map_->setKeyFrameIndex(places_);
+  vocabulary_description_ = vocabulary.file.string();
+  vocabulary_fingerprint_ = loop::vocabularyFingerprint(places_->vocabulary());
+}
 
-  const auto camera = frameCameraFrom(settings_, rectifier_.get());
-  frame_builder_ = std::make_unique<track::FrameBuilder>(camera, orb_settings_, !sequential_);
-  spdlog::debug("ORB extractor: {}", orb_settings_.summary());
-  const bool loop_closing = places_ && options.loop_closing.value_or(settings_.loop.closing);
-  if (loop_closing) {
-    loop::LoopCloserParams loop_params;
-    loop_params.threaded = !sequential_;
-    // Monocular: Sim3 loops, which also correct the scale drift.
-    loop_params.fix_scale = settings_.sensor != io::SensorType::Monocular;
-    loop_params.direct_index_levels_up = loop::PlaceRecognition::kDirectIndexLevelsUp;
+// Loop closer, local mapper and tracker, each fed by the next (docs/architecture.md), with the
+// parameters of stageParamsFor (Tracking.*, LocalMapping.*, Loop.*).
+void Pipeline::setUpStages(const track::FrameCamera& camera, const PipelineOptions& options) {
+  StageParams params = stageParamsFor(
+      settings_, sequential_,
+      options.motion_evidence.value_or(settings_.dynamic.motionEvidenceFor(settings_.sensor)));
+  if (places_ && options.loop_closing.value_or(settings_.loop.closing)) {
     // The mapper exists before the first keyframe reaches the closer.
     loop_closer_ = std::make_unique<loop::LoopCloser>(
-        map_, places_->vocabulary(), places_->database(), loop_params,
+        map_, places_->vocabulary(), places_->database(), params.loop,
         [this] { return mapper_->pauseProcessing(); });
-    spdlog::info("loop closing is on");
-  }
-  mapping::LocalMapperParams mapper_params;
-  mapper_params.threaded = !sequential_;
-  if (settings_.sensor == io::SensorType::Monocular) mapper_params.triangulation_neighbours = 20;
-  if (loop_closer_) {
-    mapper_params.on_keyframe_processed = [closer = loop_closer_.get()](const auto& keyframe) {
+    params.mapper.on_keyframe_processed = [closer = loop_closer_.get()](const auto& keyframe) {
       closer->insertKeyFrame(keyframe);
     };
+    spdlog::info("loop closing is on");
   }
   mapper_ = std::make_unique<mapping::LocalMapper>(map_, camera, frame_builder_->pyramid(),
-                                                   mapper_params);
-  track::TrackerParams tracker_params;
-  tracker_params.max_frames_between_keyframes = std::max(1, static_cast<int>(settings_.camera.fps));
-  tracker_params.inlier_reference_half_life = tracker_params.max_frames_between_keyframes;
-  tracker_params.new_map_after_s = settings_.system.newMapAfter;
-  tracker_params.monocular.two_view.threaded = !sequential_;
-  // Only monocular keyframes depend on the mapper for all their new points; RGB-D and stereo
-  // ones bring their own from depth (docs/tracking.md "Keyframes while the mapper is busy").
-  tracker_params.wait_for_busy_mapper = settings_.sensor == io::SensorType::Monocular;
-  wait_for_busy_mapper_ = tracker_params.wait_for_busy_mapper;
-  tracker_params.motion_evidence.enabled =
-      options.motion_evidence.value_or(settings_.dynamic.motionEvidenceFor(settings_.sensor));
-  if (stereo) {
-    // ORB-SLAM starts a stereo map from a frame with > 500 keypoints, of which typically half
-    // have a stereo match; 500 matches would delay EuRoC V1_01 by 6 frames with enhancement
-    // (~480 matches of 1200 features per frame, against ~580 without).
-    tracker_params.min_initial_features = 250;
-  }
+                                                   params.mapper);
+  wait_for_busy_mapper_ = params.tracker.wait_for_busy_mapper;
   if (detector_params_) {
-    tracker_params.dynamic_memory.frames = detector_params_->memory_frames;
-    tracker_params.dynamic_memory.strikes = detector_params_->memory_strikes;
+    params.tracker.dynamic_memory.frames = detector_params_->memory_frames;
+    params.tracker.dynamic_memory.strikes = detector_params_->memory_strikes;
   }
   tracker_ = std::make_unique<track::Tracker>(map_, *mapper_, camera, frame_builder_->pyramid(),
-                                              tracker_params);
+                                              params.tracker);
   if (places_) {
     tracker_->setRelocalizer(std::make_shared<loop::BowFrameRelocalizer>(
         places_, map_, camera, frame_builder_->pyramid()));
   }
-  if (settings_.file) checkUnknownKeys(*settings_.file, options.strict_settings);
 }
 
 Pipeline::~Pipeline() {

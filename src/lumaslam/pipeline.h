@@ -165,6 +165,13 @@ class Pipeline {
   const std::string& vocabularyDescription() const { return vocabulary_description_; }
 
  private:
+  // The constructor's steps, in order.
+  void setUpStereoRectification();
+  void setUpEnhancement(const PipelineOptions& options);
+  void setUpDetector(const PipelineOptions& options);
+  void setUpPlaceRecognition(const PipelineOptions& options);
+  void setUpStages(const track::FrameCamera& camera, const PipelineOptions& options);
+
   struct Images {
     cv::Mat gray;      // for ORB features
     cv::Mat detector;  // for the detector: raw or enhanced colour (Detector.image)

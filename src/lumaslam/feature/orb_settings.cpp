@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include "lumaslam/core/error.h"
+#include "lumaslam/core/settings_section.h"
 
 namespace lumaslam::feature {
 
@@ -58,6 +59,17 @@ std::string OrbSettings::summary() const {
   return fmt::format("{} features, {} levels x{}, FAST {}/{}, levels {}", nFeatures, nLevels,
                      scaleFactor, iniThFAST, minThFAST,
                      parallelLevels ? "in parallel" : "in sequence");
+}
+
+std::string OrbSettings::settingsLines() const {
+  core::SectionPrinter printer("ORBextractor");
+  printer("nFeatures", nFeatures);
+  printer("scaleFactor", scaleFactor);
+  printer("nLevels", nLevels);
+  printer("iniThFAST", iniThFAST);
+  printer("minThFAST", minThFAST);
+  printer("parallel", parallelLevels);
+  return printer.text();
 }
 
 }  // namespace lumaslam::feature

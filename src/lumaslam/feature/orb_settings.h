@@ -38,6 +38,8 @@ struct OrbSettings {
 
   // One line for logs: "1000 features, 8 levels x1.2, FAST 20/7, levels in sequence".
   std::string summary() const;
+  // The ORBextractor.* keys as settings lines ("ORBextractor.nFeatures: 1000\n...").
+  std::string settingsLines() const;
 
   friend bool operator==(const OrbSettings&, const OrbSettings&) = default;
 };

@@ -1,0 +1,84 @@
+#include "lumaslam/pipeline_params.h"
+
+#include <algorithm>
+
+#include "lumaslam/core/settings_section.h"
+#include "lumaslam/feature/orb_settings.h"
+#include "lumaslam/loop/loop_closer_settings.h"
+#include "lumaslam/loop/place_recognition.h"
+#include "lumaslam/mapping/local_mapper_settings.h"
+#include "lumaslam/track/tracker_settings.h"
+
+namespace lumaslam {
+namespace {
+
+track::TrackerParams trackerDefaults(const io::Settings& settings, bool sequential,
+                                     bool motion_evidence) {
+  track::TrackerParams p;
+  p.max_frames_between_keyframes = std::max(1, static_cast<int>(settings.camera.fps));
+  p.inlier_reference_half_life = p.max_frames_between_keyframes;
+  p.new_map_after_s = settings.system.newMapAfter;
+  p.monocular.two_view.threaded = !sequential;
+  // Only monocular keyframes depend on the mapper for all their new points; RGB-D and stereo
+  // ones bring their own from depth (docs/tracking.md "Keyframes while the mapper is busy").
+  p.wait_for_busy_mapper = settings.sensor == io::SensorType::Monocular;
+  p.motion_evidence.enabled = motion_evidence;
+  if (settings.sensor == io::SensorType::Stereo) {
+    // ORB-SLAM starts a stereo map from a frame with > 500 keypoints, of which typically half
+    // have a stereo match; 500 matches would delay EuRoC V1_01 by 6 frames with enhancement
+    // (~480 matches of 1200 features per frame, against ~580 without).
+    p.min_initial_features = 250;
+  }
+  return p;
+}
+
+mapping::LocalMapperParams mapperDefaults(const io::Settings& settings, bool sequential) {
+  mapping::LocalMapperParams p;
+  p.threaded = !sequential;
+  if (settings.sensor == io::SensorType::Monocular) p.triangulation_neighbours = 20;
+  return p;
+}
+
+loop::LoopCloserParams loopDefaults(const io::Settings& settings, bool sequential) {
+  loop::LoopCloserParams p;
+  p.threaded = !sequential;
+  // Monocular: Sim3 loops, which also correct the scale drift.
+  p.fix_scale = settings.sensor != io::SensorType::Monocular;
+  p.direct_index_levels_up = loop::PlaceRecognition::kDirectIndexLevelsUp;
+  return p;
+}
+
+}  // namespace
+
+StageParams stageParamsFor(const io::Settings& settings, bool sequential, bool motion_evidence) {
+  StageParams params{trackerDefaults(settings, sequential, motion_evidence),
+                     mapperDefaults(settings, sequential), loopDefaults(settings, sequential)};
+  if (settings.file) {
+    track::readTrackingSettings(*settings.file, params.tracker);
+    mapping::readLocalMappingSettings(*settings.file, params.mapper);
+    loop::readLoopClosingSettings(*settings.file, params.loop);
+  }
+  return params;
+}
+
+std::string printStageParams(const StageParams& params) {
+  return track::printTrackingSettings(params.tracker) +
+         mapping::printLocalMappingSettings(params.mapper) +
+         loop::printLoopClosingSettings(params.loop);
+}
+
+std::string effectiveSettings(const io::Settings& settings, const PipelineOptions& options) {
+  const bool sequential = options.sequential.value_or(settings.system.sequential);
+  const bool motion_evidence =
+      options.motion_evidence.value_or(settings.dynamic.motionEvidenceFor(settings.sensor));
+  const auto orb =
+      settings.file ? feature::OrbSettings::fromSettings(*settings.file) : feature::OrbSettings{};
+  core::SectionPrinter system("System");
+  system("sequential", sequential);
+  core::SectionPrinter dynamic("Dynamic");
+  dynamic("motionEvidence", motion_evidence);
+  return orb.settingsLines() + system.text() + dynamic.text() +
+         printStageParams(stageParamsFor(settings, sequential, motion_evidence));
+}
+
+}  // namespace lumaslam

@@ -1,0 +1,31 @@
+#pragma once
+// The parameters of the tracking, local-mapping and loop-closing stages of a Pipeline: the
+// defaults for the sensor and mode, then the settings file's Tracking.*, LocalMapping.* and
+// Loop.* keys over them (docs/settings.md). `lumaslam run --print-settings` prints them.
+#include <string>
+
+#include "lumaslam/io/settings.h"
+#include "lumaslam/loop/loop_closer.h"
+#include "lumaslam/mapping/local_mapper.h"
+#include "lumaslam/pipeline.h"
+#include "lumaslam/track/tracker.h"
+
+namespace lumaslam {
+
+struct StageParams {
+  track::TrackerParams tracker;
+  mapping::LocalMapperParams mapper;
+  loop::LoopCloserParams loop;
+};
+
+StageParams stageParamsFor(const io::Settings& settings, bool sequential, bool motion_evidence);
+
+// The keys of stageParamsFor as settings-file lines, one section after another.
+std::string printStageParams(const StageParams& params);
+
+// What a Pipeline built from `settings` and `options` runs with, as settings-file lines that
+// read back to the same values: ORBextractor.*, System.sequential, Dynamic.motionEvidence and
+// the stage sections (`lumaslam run --print-settings`).
+std::string effectiveSettings(const io::Settings& settings, const PipelineOptions& options);
+
+}  // namespace lumaslam
