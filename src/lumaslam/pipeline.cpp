@@ -5,6 +5,7 @@
 #include <functional>
 
 #include <spdlog/spdlog.h>
+#include <opencv2/imgproc.hpp>
 
 #include "lumaslam/camera/stereo_rectifier.h"
 #include "lumaslam/core/error.h"
@@ -42,6 +43,28 @@ track::FrameCamera frameCameraFrom(const io::Settings& settings,
   }
   return {camera::PinholeCamera::fromSettings(settings.camera), settings.bf(),
           settings.closeDepth()};
+}
+
+// Camera.newWidth/newHeight (ORB-SLAM3's resize): images of the calibrated size are resized
+// to the working size the intrinsics were scaled to (io::CameraSettings::atWorkingSize).
+// Depth and masks take the nearest pixel: blending would invent depths across object edges.
+// An image of any other size is passed on as it is, for the size checks to name.
+SensorFrame atWorkingSize(const SensorFrame& input, const io::CameraSettings& camera) {
+  if (!camera.resizeTo) return input;
+  const cv::Size calibrated(camera.size.width, camera.size.height);
+  const cv::Size working(camera.resizeTo->width, camera.resizeTo->height);
+  SensorFrame resized = input;
+  const auto resize = [&](cv::Mat& image, int interpolation) {
+    if (image.size() != calibrated) return;
+    cv::Mat out;
+    cv::resize(image, out, working, 0.0, 0.0, interpolation);
+    image = out;
+  };
+  resize(resized.image, cv::INTER_LINEAR);
+  resize(resized.right, cv::INTER_LINEAR);
+  resize(resized.depth, cv::INTER_NEAREST);
+  resize(resized.dynamic_mask, cv::INTER_NEAREST);
+  return resized;
 }
 
 // The ORBextractor.* section, read by the one parser of it (feature/orb_settings.h).
@@ -381,8 +404,9 @@ void Pipeline::removeDynamicFeatures(track::Frame& frame, const cv::Mat& depth_m
   track::keepFeatures(frame, kept);
 }
 
-FrameResult Pipeline::track(const SensorFrame& input) {
-  if (shut_down_) fail("frame {}: track() after shutdown()", input.index);
+FrameResult Pipeline::track(const SensorFrame& sensor_input) {
+  if (shut_down_) fail("frame {}: track() after shutdown()", sensor_input.index);
+  const SensorFrame input = atWorkingSize(sensor_input, settings_.camera);
   const auto start = Clock::now();
   FrameResult result;
   std::optional<track::Frame> frame;
