@@ -85,6 +85,210 @@ Sim3Pairs sim3PairsOf(const map::KeyFrame& current, const map::KeyFrame& loop,
   return out;
 }
 
+// The keyframes a loop moves (the current one and its covisible neighbours), with their poses
+// before and after the loop transform.
+struct LoopGroup {
+  std::vector<KeyFramePtr> keyframes;
+  SimsById uncorrected;
+  SimsById corrected;
+  std::unordered_map<map::Id, map::Id> corrected_by;  // point -> keyframe it moved with
+};
+
+LoopGroup loopGroupOf(const KeyFramePtr& current, const SE3& T_w_cur, const Sim3& S_c_w) {
+  LoopGroup group;
+  group.keyframes = current->covisibles();
+  group.keyframes.push_back(current);
+  for (const auto& kf : group.keyframes) {
+    group.uncorrected[kf->id()] = Sim3::fromSE3(kf->T_c_w());
+    group.corrected[kf->id()] = Sim3::fromSE3(kf->T_c_w() * T_w_cur) * S_c_w;
+  }
+  return group;
+}
+
+ClosedLoop closedLoopOf(const LoopMatch& match, const SE3& T_w_cur) {
+  ClosedLoop closed;
+  closed.current = match.current->id();
+  closed.loop = match.loop->id();
+  closed.inliers = match.inliers;
+  const SE3 move = T_w_cur * match.T_c_w;
+  closed.correction_m = move.translation().norm();
+  closed.correction_deg = Eigen::AngleAxisd(move.linear()).angle() * 180.0 / M_PI;
+  closed.correction_scale = match.S_c_w.scale;
+  return closed;
+}
+
+// Each keyframe of the group takes its corrected pose, each of its points (once) moves with it.
+void moveGroup(LoopGroup& group) {
+  std::vector<std::shared_ptr<map::MapPoint>> moved;
+  for (const auto& kf : group.keyframes) {
+    const Sim3 to_corrected = group.corrected[kf->id()].inverse() * group.uncorrected[kf->id()];
+    for (const auto& point : kf->mapPoints()) {
+      if (!point || point->isBad() || group.corrected_by.contains(point->id())) continue;
+      point->setPosition(to_corrected * point->position());
+      group.corrected_by[point->id()] = kf->id();
+      moved.push_back(point);
+    }
+    kf->setPose(group.corrected[kf->id()].toSE3());
+  }
+  for (const auto& point : moved) point->updateNormalAndDepth();
+}
+
+using NeighboursById = std::map<map::Id, std::set<map::Id>>;
+
+NeighboursById neighboursOf(const std::vector<KeyFramePtr>& keyframes) {
+  NeighboursById neighbours;
+  for (const auto& kf : keyframes) {
+    for (const auto& n : kf->covisibles()) neighbours[kf->id()].insert(n->id());
+  }
+  return neighbours;
+}
+
+// The current keyframe's matched features take the loop points.
+void takeLoopPoints(map::Map& map, const LoopMatch& match) {
+  const KeyFramePtr& current = match.current;
+  for (std::size_t i = 0; i < match.points.size(); ++i) {
+    const auto& loop_point = match.points[i];
+    if (!loop_point || loop_point->isBad()) continue;
+    const auto existing = current->mapPoint(i);
+    if (existing && !existing->isBad()) {
+      if (existing != loop_point) map.replaceMapPoint(existing, loop_point);
+    } else if (loop_point->featureIndexIn(current->id()) < 0) {
+      current->setMapPoint(i, loop_point);
+      loop_point->addObservation(current, static_cast<int>(i));
+      loop_point->computeDistinctiveDescriptor();
+    }
+  }
+}
+
+using LoopLinks = std::set<std::pair<map::Id, map::Id>>;
+
+// New links the fusion created between the group and the loop side.
+LoopLinks newLoopLinks(const std::vector<KeyFramePtr>& group, NeighboursById& neighbours_before,
+                       const LoopMatch& match, int strong_covisibility) {
+  LoopLinks loop_links;
+  std::unordered_set<map::Id> group_ids;
+  for (const auto& kf : group) group_ids.insert(kf->id());
+  for (const auto& kf : group) {
+    kf->updateConnections();
+    for (const auto& n : kf->covisibles()) {
+      if (group_ids.contains(n->id()) || neighbours_before[kf->id()].contains(n->id())) continue;
+      const bool the_loop = kf == match.current && n == match.loop;
+      if (!the_loop && kf->weight(n->id()) < strong_covisibility) continue;
+      loop_links.insert({kf->id(), n->id()});
+    }
+  }
+  loop_links.insert({match.current->id(), match.loop->id()});
+  return loop_links;
+}
+
+struct EssentialGraph {
+  SimsById initial;      // per vertex: the corrected pose, or the pose as it is
+  SimsById before_loop;  // per vertex: the pose before the loop correction
+  std::vector<map::Id> vertex_ids;
+  std::vector<std::tuple<map::Id, map::Id, Sim3>> edges;  // i, j, S_i_j
+};
+
+// The vertices: every good keyframe of the current map.
+EssentialGraph essentialGraphVertices(const std::vector<KeyFramePtr>& keyframes, map::MapId map_id,
+                                      const LoopGroup& group) {
+  EssentialGraph graph;
+  for (const auto& kf : keyframes) {
+    if (kf->isBad() || kf->mapId() != map_id) continue;
+    const auto corrected = group.corrected.find(kf->id());
+    const Sim3 S =
+        corrected != group.corrected.end() ? corrected->second : Sim3::fromSE3(kf->T_c_w());
+    graph.initial[kf->id()] = S;
+    const auto uncorrected = group.uncorrected.find(kf->id());
+    graph.before_loop[kf->id()] = uncorrected != group.uncorrected.end() ? uncorrected->second : S;
+    graph.vertex_ids.push_back(kf->id());
+  }
+  return graph;
+}
+
+// The edges, each pair once: the loop links, then the spanning tree, earlier loop edges and
+// strong covisibility of every keyframe.
+void addEssentialGraphEdges(EssentialGraph& graph, const std::vector<KeyFramePtr>& keyframes,
+                            const LoopLinks& loop_links, int strong_covisibility) {
+  std::set<std::pair<map::Id, map::Id>> added;
+  const auto add_edge = [&](map::Id i, map::Id j, const SimsById& poses) {
+    if (i == j || !poses.contains(i) || !poses.contains(j)) return;
+    if (!added.insert({std::min(i, j), std::max(i, j)}).second) return;
+    graph.edges.emplace_back(i, j, poses.at(i) * poses.at(j).inverse());
+  };
+  for (const auto& [i, j] : loop_links) add_edge(i, j, graph.initial);
+  for (const auto& kf : keyframes) {
+    if (kf->isBad()) continue;
+    if (const auto parent = kf->parent()) add_edge(kf->id(), parent->id(), graph.before_loop);
+    for (const auto& other : kf->loopEdges()) add_edge(kf->id(), other->id(), graph.before_loop);
+    for (const auto& n : kf->covisiblesWithMinWeight(strong_covisibility)) {
+      add_edge(kf->id(), n->id(), graph.before_loop);
+    }
+  }
+}
+
+SimsById optimiseSE3Graph(const EssentialGraph& graph, map::Id fixed_id,
+                          const optimize::PoseGraphOptions& options) {
+  optimize::PoseGraphProblem problem;
+  for (const map::Id id : graph.vertex_ids) {
+    problem.vertices.push_back({id, graph.initial.at(id).toSE3(), id == fixed_id});
+  }
+  for (const auto& [i, j, S_i_j] : graph.edges) {
+    optimize::PoseGraphEdge edge;
+    edge.fromId = i;
+    edge.toId = j;
+    edge.T_i_j = S_i_j.toSE3();
+    problem.edges.push_back(edge);
+  }
+  const auto result = optimize::optimizePoseGraph(problem, options);
+  SimsById optimised;
+  for (std::size_t v = 0; v < graph.vertex_ids.size(); ++v) {
+    optimised[graph.vertex_ids[v]] = Sim3::fromSE3(result.T_c_w[v]);
+  }
+  return optimised;
+}
+
+SimsById optimiseSim3Graph(const EssentialGraph& graph, map::Id fixed_id,
+                           const optimize::PoseGraphOptions& options) {
+  optimize::Sim3PoseGraphProblem problem;
+  for (const map::Id id : graph.vertex_ids) {
+    problem.vertices.push_back({id, graph.initial.at(id), id == fixed_id});
+  }
+  for (const auto& [i, j, S_i_j] : graph.edges) {
+    optimize::Sim3PoseGraphEdge edge;
+    edge.fromId = i;
+    edge.toId = j;
+    edge.S_i_j = S_i_j;
+    problem.edges.push_back(edge);
+  }
+  const auto result = optimize::optimizeSim3PoseGraph(problem, options);
+  SimsById optimised;
+  for (std::size_t v = 0; v < graph.vertex_ids.size(); ++v) {
+    optimised[graph.vertex_ids[v]] = result.S_c_w[v];
+  }
+  return optimised;
+}
+
+// Each point moves with its anchor keyframe: X' = S_optimised^-1 * S_initial * X.
+void movePointsWithGraph(const std::vector<std::shared_ptr<map::MapPoint>>& points,
+                         const SimsById& initial, const SimsById& optimised,
+                         const std::unordered_map<map::Id, map::Id>& corrected_by) {
+  for (const auto& point : points) {
+    if (point->isBad()) continue;
+    map::Id anchor = point->referenceKeyFrameId();
+    if (const auto by = corrected_by.find(point->id()); by != corrected_by.end()) {
+      anchor = by->second;
+    }
+    if (!optimised.contains(anchor)) {
+      const auto observations = point->observations();
+      if (observations.empty() || !optimised.contains(observations.front().first->id())) continue;
+      anchor = observations.front().first->id();
+    }
+    const Sim3 shift = optimised.at(anchor).inverse() * initial.at(anchor);
+    point->setPosition(shift * point->position());
+    point->updateNormalAndDepth();
+  }
+}
+
 }  // namespace
 
 LoopCloser::LoopCloser(std::shared_ptr<map::Map> map, const Vocabulary& vocabulary,
@@ -413,138 +617,31 @@ ClosedLoop LoopCloser::correctLoop(const LoopMatch& match) {
   // 1. The current keyframe and its neighbours follow the loop transform (ORB-SLAM's
   //    CorrectedSim3: S_i_w' = T_i_w * T_w_cur * S_cur_w'; the scale is 1 for SE3 loops).
   current->updateConnections();
-  std::vector<KeyFramePtr> group = current->covisibles();
-  group.push_back(current);
   const SE3 T_w_cur = current->T_w_c();
-  SimsById uncorrected;
-  SimsById corrected;
-  for (const auto& kf : group) {
-    uncorrected[kf->id()] = Sim3::fromSE3(kf->T_c_w());
-    corrected[kf->id()] = Sim3::fromSE3(kf->T_c_w() * T_w_cur) * match.S_c_w;
-  }
-  ClosedLoop closed;
-  closed.current = current->id();
-  closed.loop = match.loop->id();
-  closed.inliers = match.inliers;
-  const SE3 move = T_w_cur * match.T_c_w;
-  closed.correction_m = move.translation().norm();
-  closed.correction_deg = Eigen::AngleAxisd(move.linear()).angle() * 180.0 / M_PI;
-  closed.correction_scale = match.S_c_w.scale;
-
-  std::unordered_map<map::Id, map::Id> corrected_by;  // point -> keyframe it moved with
-  std::vector<std::shared_ptr<map::MapPoint>> moved;
-  for (const auto& kf : group) {
-    const Sim3 to_corrected = corrected[kf->id()].inverse() * uncorrected[kf->id()];
-    for (const auto& point : kf->mapPoints()) {
-      if (!point || point->isBad() || corrected_by.contains(point->id())) continue;
-      point->setPosition(to_corrected * point->position());
-      corrected_by[point->id()] = kf->id();
-      moved.push_back(point);
-    }
-    kf->setPose(corrected[kf->id()].toSE3());
-  }
-  for (const auto& point : moved) point->updateNormalAndDepth();
+  LoopGroup group = loopGroupOf(current, T_w_cur, match.S_c_w);
+  const ClosedLoop closed = closedLoopOf(match, T_w_cur);
+  moveGroup(group);
 
   // 2. Loop fusion: the current keyframe's matched features take the loop points, then the
   //    loop neighbourhood's points are fused into every keyframe of the group.
-  std::map<map::Id, std::set<map::Id>> neighbours_before;
-  for (const auto& kf : group) {
-    for (const auto& n : kf->covisibles()) neighbours_before[kf->id()].insert(n->id());
-  }
-  for (std::size_t i = 0; i < match.points.size(); ++i) {
-    const auto& loop_point = match.points[i];
-    if (!loop_point || loop_point->isBad()) continue;
-    const auto existing = current->mapPoint(i);
-    if (existing && !existing->isBad()) {
-      if (existing != loop_point) map_->replaceMapPoint(existing, loop_point);
-    } else if (loop_point->featureIndexIn(current->id()) < 0) {
-      current->setMapPoint(i, loop_point);
-      loop_point->addObservation(current, static_cast<int>(i));
-      loop_point->computeDistinctiveDescriptor();
-    }
-  }
+  NeighboursById neighbours_before = neighboursOf(group.keyframes);
+  takeLoopPoints(*map_, match);
   const auto loop_points = groupPoints(match.loop);
-  for (const auto& kf : group) {
+  for (const auto& kf : group.keyframes) {
     mapping::fusePointsInto(*map_, kf, loop_points, params_.fusion_radius_px);
   }
-  // New links the fusion created between the group and the loop side.
-  std::set<std::pair<map::Id, map::Id>> loop_links;
-  std::unordered_set<map::Id> group_ids;
-  for (const auto& kf : group) group_ids.insert(kf->id());
-  for (const auto& kf : group) {
-    kf->updateConnections();
-    for (const auto& n : kf->covisibles()) {
-      if (group_ids.contains(n->id()) || neighbours_before[kf->id()].contains(n->id())) continue;
-      const bool the_loop = kf == current && n == match.loop;
-      if (!the_loop && kf->weight(n->id()) < params_.strong_covisibility) continue;
-      loop_links.insert({kf->id(), n->id()});
-    }
-  }
-  loop_links.insert({current->id(), match.loop->id()});
+  const auto loop_links =
+      newLoopLinks(group.keyframes, neighbours_before, match, params_.strong_covisibility);
 
   // 3. Essential graph (ORB-SLAM's OptimizeEssentialGraph), loop keyframe fixed. Loop links
   //    are measured with the corrected poses, every other edge with the poses before the loop.
   const auto keyframes = map_->keyFrames();
-  SimsById initial;
-  SimsById before_loop;
-  std::vector<map::Id> vertex_ids;
-  for (const auto& kf : keyframes) {
-    if (kf->isBad() || kf->mapId() != current->mapId()) continue;
-    const Sim3 S = corrected.contains(kf->id()) ? corrected[kf->id()] : Sim3::fromSE3(kf->T_c_w());
-    initial[kf->id()] = S;
-    before_loop[kf->id()] = uncorrected.contains(kf->id()) ? uncorrected[kf->id()] : S;
-    vertex_ids.push_back(kf->id());
-  }
-  std::vector<std::tuple<map::Id, map::Id, Sim3>> edges;  // i, j, S_i_j
-  std::set<std::pair<map::Id, map::Id>> added;
-  const auto add_edge = [&](map::Id i, map::Id j, const SimsById& poses) {
-    if (i == j || !poses.contains(i) || !poses.contains(j)) return;
-    if (!added.insert({std::min(i, j), std::max(i, j)}).second) return;
-    edges.emplace_back(i, j, poses.at(i) * poses.at(j).inverse());
-  };
-  for (const auto& [i, j] : loop_links) add_edge(i, j, initial);
-  for (const auto& kf : keyframes) {
-    if (kf->isBad()) continue;
-    if (const auto parent = kf->parent()) add_edge(kf->id(), parent->id(), before_loop);
-    for (const auto& other : kf->loopEdges()) add_edge(kf->id(), other->id(), before_loop);
-    for (const auto& n : kf->covisiblesWithMinWeight(params_.strong_covisibility)) {
-      add_edge(kf->id(), n->id(), before_loop);
-    }
-  }
+  EssentialGraph graph = essentialGraphVertices(keyframes, current->mapId(), group);
+  addEssentialGraphEdges(graph, keyframes, loop_links, params_.strong_covisibility);
   optimize::PoseGraphOptions options;
   options.maxIterations = params_.pose_graph_iterations;
-  SimsById optimised;
-  if (params_.fix_scale) {
-    optimize::PoseGraphProblem problem;
-    for (const map::Id id : vertex_ids) {
-      problem.vertices.push_back({id, initial[id].toSE3(), id == match.loop->id()});
-    }
-    for (const auto& [i, j, S_i_j] : edges) {
-      optimize::PoseGraphEdge edge;
-      edge.fromId = i;
-      edge.toId = j;
-      edge.T_i_j = S_i_j.toSE3();
-      problem.edges.push_back(edge);
-    }
-    const auto result = optimize::optimizePoseGraph(problem, options);
-    for (std::size_t v = 0; v < vertex_ids.size(); ++v) {
-      optimised[vertex_ids[v]] = Sim3::fromSE3(result.T_c_w[v]);
-    }
-  } else {
-    optimize::Sim3PoseGraphProblem problem;
-    for (const map::Id id : vertex_ids) {
-      problem.vertices.push_back({id, initial[id], id == match.loop->id()});
-    }
-    for (const auto& [i, j, S_i_j] : edges) {
-      optimize::Sim3PoseGraphEdge edge;
-      edge.fromId = i;
-      edge.toId = j;
-      edge.S_i_j = S_i_j;
-      problem.edges.push_back(edge);
-    }
-    const auto result = optimize::optimizeSim3PoseGraph(problem, options);
-    for (std::size_t v = 0; v < vertex_ids.size(); ++v) optimised[vertex_ids[v]] = result.S_c_w[v];
-  }
+  SimsById optimised = params_.fix_scale ? optimiseSE3Graph(graph, match.loop->id(), options)
+                                         : optimiseSim3Graph(graph, match.loop->id(), options);
 
   // 4. Keyframes take the optimised poses; points move with the keyframe that corrected
   //    them, or their reference keyframe (the first observer if that one is gone):
@@ -552,21 +649,7 @@ ClosedLoop LoopCloser::correctLoop(const LoopMatch& match) {
   for (const auto& kf : keyframes) {
     if (optimised.contains(kf->id())) kf->setPose(optimised[kf->id()].toSE3());
   }
-  for (const auto& point : map_->mapPoints()) {
-    if (point->isBad()) continue;
-    map::Id anchor = point->referenceKeyFrameId();
-    if (const auto by = corrected_by.find(point->id()); by != corrected_by.end()) {
-      anchor = by->second;
-    }
-    if (!optimised.contains(anchor)) {
-      const auto observations = point->observations();
-      if (observations.empty() || !optimised.contains(observations.front().first->id())) continue;
-      anchor = observations.front().first->id();
-    }
-    const Sim3 shift = optimised[anchor].inverse() * initial[anchor];
-    point->setPosition(shift * point->position());
-    point->updateNormalAndDepth();
-  }
+  movePointsWithGraph(map_->mapPoints(), graph.initial, optimised, group.corrected_by);
 
   current->addLoopEdge(match.loop);
   match.loop->addLoopEdge(current);
