@@ -289,6 +289,94 @@ void movePointsWithGraph(const std::vector<std::shared_ptr<map::MapPoint>>& poin
   }
 }
 
+// The global adjustment's snapshot of the atlas: every good keyframe of a map (each map's
+// origin fixed) and every point they observe.
+struct GlobalBASnapshot {
+  optimize::LocalBAProblem problem;
+  PosesById T_c_w;                                     // per keyframe of the problem
+  std::vector<std::shared_ptr<map::MapPoint>> points;  // per point of the problem
+};
+
+GlobalBASnapshot globalBASnapshotOf(const map::Map& map,
+                                    const std::vector<KeyFramePtr>& keyframes) {
+  GlobalBASnapshot out;
+  optimize::LocalBAProblem& problem = out.problem;
+  PosesById& snapshot = out.T_c_w;
+  const auto& k = keyframes.front()->intrinsics();
+  problem.camera = {k.fx, k.fy, k.cx, k.cy, k.bf};
+  for (const auto& kf : keyframes) {
+    if (kf->isBad() || kf->mapId() == map::kDiscardedMap) continue;
+    snapshot[kf->id()] = kf->T_c_w();
+    problem.keyFrames.push_back({kf->id(), snapshot[kf->id()], map.isMapOrigin(*kf)});
+  }
+  for (const auto& point : map.mapPoints()) {
+    if (point->isBad()) continue;
+    bool observed = false;
+    for (const auto& [kf, index] : point->observations()) {
+      if (!snapshot.contains(kf->id())) continue;
+      problem.observations.push_back(
+          mapping::baObservation(*kf, static_cast<std::size_t>(index), point->id()));
+      observed = true;
+    }
+    if (!observed) continue;
+    problem.points.push_back({point->id(), point->position()});
+    out.points.push_back(point);
+  }
+  return out;
+}
+
+// World correction of each adjusted keyframe: X' = T_w_c(new) * T_c_w(snapshot) * X.
+PosesById keyFrameCorrections(const GlobalBASnapshot& snapshot,
+                              const optimize::LocalBAResult& result) {
+  PosesById correction;
+  for (std::size_t v = 0; v < snapshot.problem.keyFrames.size(); ++v) {
+    const map::Id id = snapshot.problem.keyFrames[v].id;
+    correction[id] = result.T_c_w[v].inverse() * snapshot.T_c_w.at(id);
+  }
+  return correction;
+}
+
+// Every keyframe moves by its correction; one added during the adjustment follows its nearest
+// adjusted ancestor (at most max_steps up the spanning tree) and takes its correction.
+void moveKeyFrames(const map::Map& map, PosesById& correction, std::size_t max_steps) {
+  for (const auto& kf : map.keyFrames()) {
+    if (kf->isBad()) continue;
+    if (const auto own = correction.find(kf->id()); own != correction.end()) {
+      kf->setPose((own->second * kf->T_w_c()).inverse());
+      continue;
+    }
+    // Added during the adjustment: follow the nearest adjusted ancestor.
+    std::size_t steps = 0;  // bounded even if the spanning tree were broken
+    for (auto ancestor = kf->parent(); ancestor && steps < max_steps;
+         ancestor = ancestor->parent(), ++steps) {
+      if (const auto found = correction.find(ancestor->id()); found != correction.end()) {
+        kf->setPose((found->second * kf->T_w_c()).inverse());
+        correction[kf->id()] = found->second;
+        break;
+      }
+    }
+  }
+}
+
+// The adjusted points take their positions, every other one moves with its reference keyframe.
+void movePoints(const map::Map& map, const std::vector<std::shared_ptr<map::MapPoint>>& adjusted,
+                const std::vector<Eigen::Vector3d>& X_w, const PosesById& correction) {
+  std::unordered_set<map::Id> adjusted_ids;
+  for (std::size_t p = 0; p < adjusted.size(); ++p) {
+    adjusted[p]->setPosition(X_w[p]);
+    adjusted_ids.insert(adjusted[p]->id());
+  }
+  for (const auto& point : map.mapPoints()) {
+    if (point->isBad()) continue;
+    if (!adjusted_ids.contains(point->id())) {
+      const auto found = correction.find(point->referenceKeyFrameId());
+      if (found == correction.end()) continue;
+      point->setPosition(found->second * point->position());
+    }
+    point->updateNormalAndDepth();
+  }
+}
+
 }  // namespace
 
 LoopCloser::LoopCloser(std::shared_ptr<map::Map> map, const Vocabulary& vocabulary,
@@ -427,29 +515,8 @@ bool LoopCloser::globalBundleAdjustment() {
   // origin fixes its gauge.
   const auto keyframes = map_->keyFrames();
   if (keyframes.size() < 2) return false;
-  const auto& k = keyframes.front()->intrinsics();
-  optimize::LocalBAProblem problem;
-  problem.camera = {k.fx, k.fy, k.cx, k.cy, k.bf};
-  PosesById snapshot;
-  for (const auto& kf : keyframes) {
-    if (kf->isBad() || kf->mapId() == map::kDiscardedMap) continue;
-    snapshot[kf->id()] = kf->T_c_w();
-    problem.keyFrames.push_back({kf->id(), snapshot[kf->id()], map_->isMapOrigin(*kf)});
-  }
-  std::vector<std::shared_ptr<map::MapPoint>> points;
-  for (const auto& point : map_->mapPoints()) {
-    if (point->isBad()) continue;
-    bool observed = false;
-    for (const auto& [kf, index] : point->observations()) {
-      if (!snapshot.contains(kf->id())) continue;
-      problem.observations.push_back(
-          mapping::baObservation(*kf, static_cast<std::size_t>(index), point->id()));
-      observed = true;
-    }
-    if (!observed) continue;
-    problem.points.push_back({point->id(), point->position()});
-    points.push_back(point);
-  }
+  GlobalBASnapshot snapshot = globalBASnapshotOf(*map_, keyframes);
+  const optimize::LocalBAProblem& problem = snapshot.problem;
   if (problem.observations.empty() || abort_global_ba_) return false;
   optimize::LocalBAOptions options;
   options.maxIterations = params_.global_ba_iterations;
@@ -466,43 +533,9 @@ bool LoopCloser::globalBundleAdjustment() {
   std::unique_lock<std::mutex> mapping_paused;
   if (pause_mapping_) mapping_paused = pause_mapping_();
   std::lock_guard update(map_->updateMutex());
-  // World correction of each adjusted keyframe: X' = T_w_c(new) * T_c_w(snapshot) * X.
-  std::unordered_map<map::Id, SE3> correction;
-  for (std::size_t v = 0; v < problem.keyFrames.size(); ++v) {
-    const map::Id id = problem.keyFrames[v].id;
-    correction[id] = result.T_c_w[v].inverse() * snapshot[id];
-  }
-  for (const auto& kf : map_->keyFrames()) {
-    if (kf->isBad()) continue;
-    if (const auto own = correction.find(kf->id()); own != correction.end()) {
-      kf->setPose((own->second * kf->T_w_c()).inverse());
-      continue;
-    }
-    // Added during the adjustment: follow the nearest adjusted ancestor.
-    std::size_t steps = 0;  // bounded even if the spanning tree were broken
-    for (auto ancestor = kf->parent(); ancestor && steps < keyframes.size() + 1;
-         ancestor = ancestor->parent(), ++steps) {
-      if (const auto found = correction.find(ancestor->id()); found != correction.end()) {
-        kf->setPose((found->second * kf->T_w_c()).inverse());
-        correction[kf->id()] = found->second;
-        break;
-      }
-    }
-  }
-  std::unordered_set<map::Id> adjusted;
-  for (std::size_t p = 0; p < points.size(); ++p) {
-    points[p]->setPosition(result.X_w[p]);
-    adjusted.insert(points[p]->id());
-  }
-  for (const auto& point : map_->mapPoints()) {
-    if (point->isBad()) continue;
-    if (!adjusted.contains(point->id())) {
-      const auto found = correction.find(point->referenceKeyFrameId());
-      if (found == correction.end()) continue;
-      point->setPosition(found->second * point->position());
-    }
-    point->updateNormalAndDepth();
-  }
+  PosesById correction = keyFrameCorrections(snapshot, result);
+  moveKeyFrames(*map_, correction, keyframes.size() + 1);
+  movePoints(*map_, snapshot.points, result.X_w, correction);
   return true;
 }
 
