@@ -53,6 +53,26 @@ int patchSad(const cv::Mat& left, int xL, int sumL, const cv::Mat& right, int xR
   return sad;
 }
 
+// Outliers by patch distance: far above the median SAD (ORB-SLAM: 1.5 * 1.4 * median). Counts
+// the others in result.matched.
+void dropSadOutliers(const std::vector<std::pair<int, std::size_t>>& sadOfMatch, double factor,
+                     StereoMatches& result) {
+  std::vector<int> sads(sadOfMatch.size());
+  std::transform(sadOfMatch.begin(), sadOfMatch.end(), sads.begin(),
+                 [](const auto& entry) { return entry.first; });
+  const auto middle = sads.begin() + static_cast<std::ptrdiff_t>(sads.size() / 2);
+  std::nth_element(sads.begin(), middle, sads.end());
+  const double threshold = factor * std::max(*middle, 1);
+  for (const auto& [sad, iL] : sadOfMatch) {
+    if (sad >= threshold) {
+      result.uRight[iL] = -1.0F;
+      result.depth[iL] = -1.0F;
+    } else {
+      ++result.matched;
+    }
+  }
+}
+
 }  // namespace
 
 StereoMatcher::StereoMatcher(const StereoMatcherParams& params, const ScaleLevels& levels)
@@ -116,6 +136,42 @@ bool StereoMatcher::refineBySad(const OrbFeatures& left, const OrbFeatures& righ
   return true;
 }
 
+std::optional<float> StereoMatcher::bestRightColumn(
+    const OrbFeatures& left, const OrbFeatures& right, std::size_t iL,
+    const std::vector<int>& rowBand, double maxDisparity,
+    std::vector<std::pair<int, float>>& candidates) const {
+  const cv::KeyPoint& kpL = left.keypoints[iL];
+  const float uL = kpL.pt.x;
+  const double minU = uL - maxDisparity;
+  const double maxU = uL;  // disparity >= 0
+  int bestDistance = params_.maxDescriptorDistance;
+  int bestRight = -1;
+  candidates.clear();
+  for (const int iR : rowBand) {
+    const cv::KeyPoint& kpR = right.keypoints[static_cast<std::size_t>(iR)];
+    if (kpR.octave < kpL.octave - 1 || kpR.octave > kpL.octave + 1) continue;
+    if (kpR.pt.x < minU || kpR.pt.x > maxU) continue;
+    const int distance =
+        hammingDistance(left.descriptors, static_cast<int>(iL), right.descriptors, iR);
+    candidates.emplace_back(distance, kpR.pt.x);
+    if (distance < bestDistance) {
+      bestDistance = distance;
+      bestRight = iR;
+    }
+  }
+  if (bestRight < 0) return std::nullopt;
+  const float bestU = right.keypoints[static_cast<std::size_t>(bestRight)].pt.x;
+  const float separation = 2.0F * levels_.scale(std::clamp(kpL.octave, 0, levels_.count() - 1));
+  const bool ambiguous =
+      std::any_of(candidates.begin(), candidates.end(), [&](const auto& candidate) {
+        return std::abs(candidate.second - bestU) > separation &&
+               static_cast<float>(candidate.first) * params_.ambiguityRatio <=
+                   static_cast<float>(bestDistance);
+      });
+  if (ambiguous) return std::nullopt;
+  return bestU;
+}
+
 StereoMatches StereoMatcher::match(const OrbFeatures& left, const OrbFeatures& right) const {
   const std::size_t n = left.keypoints.size();
   StereoMatches result;
@@ -138,37 +194,13 @@ StereoMatches StereoMatcher::match(const OrbFeatures& left, const OrbFeatures& r
     const int row = static_cast<int>(kpL.pt.y);
     if (row < 0 || row >= rows) continue;
     const float uL = kpL.pt.x;
-    const double minU = uL - maxDisparity;
-    const double maxU = uL;  // disparity >= 0
-    int bestDistance = params_.maxDescriptorDistance;
-    int bestRight = -1;
-    candidates.clear();
-    for (const int iR : byRow[static_cast<std::size_t>(row)]) {
-      const cv::KeyPoint& kpR = right.keypoints[static_cast<std::size_t>(iR)];
-      if (kpR.octave < kpL.octave - 1 || kpR.octave > kpL.octave + 1) continue;
-      if (kpR.pt.x < minU || kpR.pt.x > maxU) continue;
-      const int distance =
-          hammingDistance(left.descriptors, static_cast<int>(iL), right.descriptors, iR);
-      candidates.emplace_back(distance, kpR.pt.x);
-      if (distance < bestDistance) {
-        bestDistance = distance;
-        bestRight = iR;
-      }
-    }
-    if (bestRight < 0) continue;
-    const float bestU = right.keypoints[static_cast<std::size_t>(bestRight)].pt.x;
-    const float separation = 2.0F * levels_.scale(std::clamp(kpL.octave, 0, levels_.count() - 1));
-    const bool ambiguous =
-        std::any_of(candidates.begin(), candidates.end(), [&](const auto& candidate) {
-          return std::abs(candidate.second - bestU) > separation &&
-                 static_cast<float>(candidate.first) * params_.ambiguityRatio <=
-                     static_cast<float>(bestDistance);
-        });
-    if (ambiguous) continue;
+    const auto bestU = bestRightColumn(left, right, iL, byRow[static_cast<std::size_t>(row)],
+                                       maxDisparity, candidates);
+    if (!bestU) continue;
 
     float uRight = 0.0F;
     int sad = 0;
-    if (!refineBySad(left, right, kpL, bestU, uRight, sad)) continue;
+    if (!refineBySad(left, right, kpL, *bestU, uRight, sad)) continue;
     double disparity = uL - uRight;
     if (disparity < 0.0 || disparity >= maxDisparity) continue;
     if (disparity <= 0.0) {  // at infinity: keep a tiny disparity, as ORB-SLAM does
@@ -181,22 +213,7 @@ StereoMatches StereoMatcher::match(const OrbFeatures& left, const OrbFeatures& r
     sadOfMatch.emplace_back(sad, iL);
   }
   if (sadOfMatch.empty()) return result;
-
-  // Outliers by patch distance: far above the median SAD (ORB-SLAM: 1.5 * 1.4 * median).
-  std::vector<int> sads(sadOfMatch.size());
-  std::transform(sadOfMatch.begin(), sadOfMatch.end(), sads.begin(),
-                 [](const auto& entry) { return entry.first; });
-  const auto middle = sads.begin() + static_cast<std::ptrdiff_t>(sads.size() / 2);
-  std::nth_element(sads.begin(), middle, sads.end());
-  const double threshold = params_.sadOutlierFactor * std::max(*middle, 1);
-  for (const auto& [sad, iL] : sadOfMatch) {
-    if (sad >= threshold) {
-      result.uRight[iL] = -1.0F;
-      result.depth[iL] = -1.0F;
-    } else {
-      ++result.matched;
-    }
-  }
+  dropSadOutliers(sadOfMatch, params_.sadOutlierFactor, result);
   return result;
 }
 

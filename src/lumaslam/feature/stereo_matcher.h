@@ -7,6 +7,9 @@
 // whose SAD distance is far above the median are dropped. Gives the right column u_r and the
 // depth z = bf / (u_l - u_r) per left feature. Beyond ORB-SLAM: a left feature with two
 // similar candidates at clearly different columns (repeated texture) is left unmatched.
+#include <cstddef>
+#include <optional>
+#include <utility>
 #include <vector>
 
 #include "lumaslam/feature/hamming.h"
@@ -50,6 +53,14 @@ class StereoMatcher {
   // and its SAD distance; false if the window leaves the image or the minimum is at the edge.
   bool refineBySad(const OrbFeatures& left, const OrbFeatures& right, const cv::KeyPoint& kpL,
                    float uR0, float& uRight, int& sad) const;
+  // Right column (level-0 px) of the best right feature for left feature iL among `rowBand`
+  // (the right features covering its row): adjacent level, disparity in [0, maxDisparity],
+  // Hamming distance under the threshold, no similar candidate elsewhere on the row.
+  // `candidates` is scratch space.
+  std::optional<float> bestRightColumn(const OrbFeatures& left, const OrbFeatures& right,
+                                       std::size_t iL, const std::vector<int>& rowBand,
+                                       double maxDisparity,
+                                       std::vector<std::pair<int, float>>& candidates) const;
 
   StereoMatcherParams params_;
   ScaleLevels levels_;
