@@ -8,6 +8,8 @@
 #include <fstream>
 #include <string>
 #include <string_view>
+#include <utility>
+#include <vector>
 
 #include "lumaslam/core/checksum.h"
 #include "lumaslam/core/error.h"
@@ -52,7 +54,9 @@ void forEachArray(Data& d, F&& f) {
 }
 
 // Splits on spaces/tabs; at most `max` fields (one more means "too many").
-int splitFields(std::string_view line, std::array<std::string_view, 36>& fields) {
+using Fields = std::array<std::string_view, 36>;
+
+int splitFields(std::string_view line, Fields& fields) {
   int count = 0;
   std::size_t i = 0;
   while (i < line.size()) {
@@ -135,6 +139,106 @@ VocabularyData toData(const std::vector<TextNode>& nodes, const std::vector<std:
   }
   return data;
 }
+
+// The lines of a text, numbered from 1.
+struct TextLines {
+  std::string_view rest;
+  std::size_t line_number = 0;
+  bool next(std::string_view& line) {
+    if (rest.empty()) return false;
+    const std::size_t end = rest.find('\n');
+    line = rest.substr(0, end);
+    rest = end == std::string_view::npos ? std::string_view() : rest.substr(end + 1);
+    ++line_number;
+    return true;
+  }
+};
+
+// The header line 'k L scoringType weightingType': k and L, in range; only L1 / TF-IDF.
+std::pair<int, int> parseDbow2Header(std::string_view line, const std::string& name,
+                                     Fields& fields) {
+  int header[4] = {0, 0, 0, 0};
+  if (splitFields(line, fields) != 4 || !parseNumber(fields[0], header[0]) ||
+      !parseNumber(fields[1], header[1]) || !parseNumber(fields[2], header[2]) ||
+      !parseNumber(fields[3], header[3])) {
+    fail("{}:1: expected DBoW2 header 'k L scoringType weightingType', got '{}'", name,
+         line.substr(0, 80));
+  }
+  const int branching = header[0];
+  const int depth = header[1];
+  if (branching < 2 || branching > 256 || depth < 1 || depth > 32) {
+    fail("{}:1: k = {}, L = {} out of range (k 2..256, L 1..32)", name, branching, depth);
+  }
+  if (header[2] != 0 || header[3] != 0) {
+    fail("{}:1: scoring type {} / weighting type {} not supported (only 0 0: L1, TF-IDF)", name,
+         header[2], header[3]);
+  }
+  return {branching, depth};
+}
+
+// A node line 'parentId isLeaf d0..d31 weight' (`count` fields) after `node_count` nodes; its
+// descriptor is appended to `desc`.
+TextNode parseDbow2Node(const Fields& fields, int count, std::size_t node_count,
+                        const std::string& name, std::size_t line_number,
+                        std::vector<std::uint8_t>& desc) {
+  if (count != 2 + kDescriptorBytes + 1) {
+    fail("{}:{}: expected {} fields 'parentId isLeaf d0..d31 weight', found {}", name, line_number,
+         2 + kDescriptorBytes + 1, count);
+  }
+  TextNode node;
+  int leaf = 0;
+  double weight = 0.0;
+  if (!parseNumber(fields[0], node.parent) || node.parent >= node_count) {
+    fail("{}:{}: parent id '{}' is not an earlier node (0..{})", name, line_number, fields[0],
+         node_count - 1);
+  }
+  if (!parseNumber(fields[1], leaf) || (leaf != 0 && leaf != 1)) {
+    fail("{}:{}: isLeaf '{}' must be 0 or 1", name, line_number, fields[1]);
+  }
+  node.leaf = leaf == 1;
+  for (int b = 0; b < kDescriptorBytes; ++b) {
+    int value = 0;
+    if (!parseNumber(fields[2 + b], value) || value < 0 || value > 255) {
+      fail("{}:{}: descriptor byte {} '{}' must be 0..255", name, line_number, b, fields[2 + b]);
+    }
+    desc.push_back(static_cast<std::uint8_t>(value));
+  }
+  if (!parseNumber(fields[2 + kDescriptorBytes], weight) || !std::isfinite(weight) ||
+      weight < 0.0) {
+    fail("{}:{}: weight '{}' must be a finite number >= 0", name, line_number,
+         fields[2 + kDescriptorBytes]);
+  }
+  node.weight = static_cast<float>(weight);
+  return node;
+}
+
+// The tree read so far (node 0 the root): a node joins it under its parent if that is no
+// leaf, has fewer than k children and is above level L.
+struct TextTree {
+  int branching = 0;
+  int depth = 0;
+  std::vector<TextNode> nodes = std::vector<TextNode>(1);
+  std::vector<int> level = std::vector<int>(1, 0);
+
+  void add(const TextNode& node, const std::string& name, std::size_t line_number) {
+    TextNode& parent = nodes[node.parent];
+    if (node.parent != 0 && parent.leaf) {
+      fail("{}:{}: parent {} is a leaf", name, line_number, node.parent);
+    }
+    if (parent.children.size() >= static_cast<std::size_t>(branching)) {
+      fail("{}:{}: node {} would get more than k = {} children", name, line_number, node.parent,
+           branching);
+    }
+    const int node_level = level[node.parent] + 1;
+    if (node_level > depth) {
+      fail("{}:{}: node at depth {} exceeds L = {}", name, line_number, node_level, depth);
+    }
+    const auto id = static_cast<std::uint32_t>(nodes.size());
+    parent.children.push_back(id);
+    nodes.push_back(node);
+    level.push_back(node_level);
+  }
+};
 
 }  // namespace
 
@@ -221,89 +325,24 @@ Vocabulary loadVocabulary(const std::filesystem::path& file) {
 Vocabulary loadDbow2Text(const std::filesystem::path& file) {
   const std::string name = file.string();
   const std::string text = core::readWholeFile(file, "vocabulary file");
-  std::string_view rest(text);
-  std::size_t line_number = 0;
-  const auto nextLine = [&](std::string_view& line) {
-    if (rest.empty()) return false;
-    const std::size_t end = rest.find('\n');
-    line = rest.substr(0, end);
-    rest = end == std::string_view::npos ? std::string_view() : rest.substr(end + 1);
-    ++line_number;
-    return true;
-  };
-  std::array<std::string_view, 36> fields;
+  TextLines lines{text};
+  Fields fields;
   std::string_view line;
-  if (!nextLine(line)) fail("{}: empty file (expected DBoW2 header 'k L scoring weighting')", name);
-  int header[4] = {0, 0, 0, 0};
-  if (splitFields(line, fields) != 4 || !parseNumber(fields[0], header[0]) ||
-      !parseNumber(fields[1], header[1]) || !parseNumber(fields[2], header[2]) ||
-      !parseNumber(fields[3], header[3])) {
-    fail("{}:1: expected DBoW2 header 'k L scoringType weightingType', got '{}'", name,
-         line.substr(0, 80));
-  }
-  const int branching = header[0];
-  const int depth = header[1];
-  if (branching < 2 || branching > 256 || depth < 1 || depth > 32) {
-    fail("{}:1: k = {}, L = {} out of range (k 2..256, L 1..32)", name, branching, depth);
-  }
-  if (header[2] != 0 || header[3] != 0) {
-    fail("{}:1: scoring type {} / weighting type {} not supported (only 0 0: L1, TF-IDF)", name,
-         header[2], header[3]);
-  }
+  if (!lines.next(line))
+    fail("{}: empty file (expected DBoW2 header 'k L scoring weighting')", name);
+  const auto [branching, depth] = parseDbow2Header(line, name, fields);
 
-  std::vector<TextNode> nodes(1);
-  std::vector<int> level(1, 0);
+  TextTree tree{branching, depth};
   std::vector<std::uint8_t> desc(kDescriptorBytes, 0);
-  while (nextLine(line)) {
+  while (lines.next(line)) {
     const int count = splitFields(line, fields);
     if (count == 0) continue;  // blank line (e.g. the final newline)
-    if (count != 2 + kDescriptorBytes + 1) {
-      fail("{}:{}: expected {} fields 'parentId isLeaf d0..d31 weight', found {}", name,
-           line_number, 2 + kDescriptorBytes + 1, count);
-    }
-    TextNode node;
-    int leaf = 0;
-    double weight = 0.0;
-    if (!parseNumber(fields[0], node.parent) || node.parent >= nodes.size()) {
-      fail("{}:{}: parent id '{}' is not an earlier node (0..{})", name, line_number, fields[0],
-           nodes.size() - 1);
-    }
-    if (!parseNumber(fields[1], leaf) || (leaf != 0 && leaf != 1)) {
-      fail("{}:{}: isLeaf '{}' must be 0 or 1", name, line_number, fields[1]);
-    }
-    node.leaf = leaf == 1;
-    for (int b = 0; b < kDescriptorBytes; ++b) {
-      int value = 0;
-      if (!parseNumber(fields[2 + b], value) || value < 0 || value > 255) {
-        fail("{}:{}: descriptor byte {} '{}' must be 0..255", name, line_number, b, fields[2 + b]);
-      }
-      desc.push_back(static_cast<std::uint8_t>(value));
-    }
-    if (!parseNumber(fields[2 + kDescriptorBytes], weight) || !std::isfinite(weight) ||
-        weight < 0.0) {
-      fail("{}:{}: weight '{}' must be a finite number >= 0", name, line_number,
-           fields[2 + kDescriptorBytes]);
-    }
-    node.weight = static_cast<float>(weight);
-    TextNode& parent = nodes[node.parent];
-    if (node.parent != 0 && parent.leaf) {
-      fail("{}:{}: parent {} is a leaf", name, line_number, node.parent);
-    }
-    if (parent.children.size() >= static_cast<std::size_t>(branching)) {
-      fail("{}:{}: node {} would get more than k = {} children", name, line_number, node.parent,
-           branching);
-    }
-    const int node_level = level[node.parent] + 1;
-    if (node_level > depth) {
-      fail("{}:{}: node at depth {} exceeds L = {}", name, line_number, node_level, depth);
-    }
-    const auto id = static_cast<std::uint32_t>(nodes.size());
-    parent.children.push_back(id);
-    nodes.push_back(node);
-    level.push_back(node_level);
+    const TextNode node =
+        parseDbow2Node(fields, count, tree.nodes.size(), name, lines.line_number, desc);
+    tree.add(node, name, lines.line_number);
   }
-  if (nodes.size() == 1) fail("{}: no nodes after the header", name);
-  return Vocabulary(toData(nodes, desc, branching, depth), name);
+  if (tree.nodes.size() == 1) fail("{}: no nodes after the header", name);
+  return Vocabulary(toData(tree.nodes, desc, branching, depth), name);
 }
 
 void saveDbow2Text(const Vocabulary& vocabulary, const std::filesystem::path& file) {
