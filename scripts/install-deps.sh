@@ -14,6 +14,7 @@ packages=(
   pybind11-dev python3-dev python3-numpy  # the Python module (python/)
   libcpp-httplib-dev libjs-three  # the live viewer (docs/viewer.md): HTTP server, 3D drawing
   chromium               # browser tests: the viewer's page and `lumaslam report` pages, headless
+  parallel               # GNU parallel: `lumaslam experiment --emit parallel` jobs (and its test)
 )
 
 missing=()
