@@ -6,6 +6,7 @@
 #include "cli_checks.h"
 #include "command_registry.h"
 #include "lumaslam/core/error.h"
+#include "run_command_line.h"
 #include "run_pipeline.h"
 #include "run_repeat.h"
 #include "run_report.h"
@@ -103,8 +104,12 @@ const bool registered = registerCommand(
                    "Tracking, LocalMapping, Loop; docs/settings.md) and exit");
       cmd.add_flag("--report", *report,
                    "At the end, write OUT/report.html (`lumaslam report OUT`, docs/report.md)");
+      auto print_command = std::make_shared<bool>(false);
+      cmd.add_flag("--print-command", *print_command,
+                   "Print this run as one `lumaslam run` command line (every option that is not "
+                   "at its default, quoted for sh) and exit without running");
       return [options, max_frames, enhance, detector, repeats, vocabulary, on_bad_frame, report,
-              print_settings] {
+              print_settings, print_command] {
         options->on_bad_frame =
             *on_bad_frame == "stop" ? RunOptions::BadFrame::Stop : RunOptions::BadFrame::Skip;
         if (*max_frames > 0) options->max_frames = *max_frames;
@@ -123,6 +128,10 @@ const bool registered = registerCommand(
         if (options->viewer_port && *repeats > 1) fail("--viewer with --repeat: one run at a time");
         if (options->save_map && *repeats > 1) {
           fail("--save-map with --repeat: every run would write the same file");
+        }
+        if (*print_command) {
+          std::printf("%s\n", runCommandLine(*options).c_str());
+          return 0;
         }
         const int code = *repeats > 1 ? runRepeated(*options, *repeats) : runPipeline(*options);
         return *report ? reportAfterRun(options->out, code) : code;
