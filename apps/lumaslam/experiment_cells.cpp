@@ -41,13 +41,18 @@ bool stoppedBySignal(int exit_code) {
 
 }  // namespace
 
+std::filesystem::path runFolder(const std::filesystem::path& runs_dir, const std::string& dataset,
+                                const std::string& config, int run) {
+  return runs_dir / dataset / config / fmt::format("run_{}", run);
+}
+
 std::vector<ExperimentRun> experimentRuns(const Plan& plan, const std::filesystem::path& runs_dir) {
   std::vector<ExperimentRun> runs;
   for (const auto& dataset : plan.datasets) {
     for (const auto& config : plan.configs) {
       for (int k = 1; k <= plan.runs; ++k) {
         ExperimentRun run{dataset.name, config.name, k, runOptions(dataset, config)};
-        run.options.out = runs_dir / dataset.name / config.name / fmt::format("run_{}", k);
+        run.options.out = runFolder(runs_dir, dataset.name, config.name, k);
         runs.push_back(std::move(run));
       }
     }

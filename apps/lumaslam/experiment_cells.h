@@ -19,6 +19,10 @@ struct ExperimentRun {
   RunOptions options;  // options.out is the run folder
 };
 
+// DIR/runs/<dataset>/<config>/run_<k>/
+std::filesystem::path runFolder(const std::filesystem::path& runs_dir, const std::string& dataset,
+                                const std::string& config, int run);
+
 std::vector<ExperimentRun> experimentRuns(const Plan& plan, const std::filesystem::path& runs_dir);
 
 // True when the run folder holds a summary.json with status "complete".
