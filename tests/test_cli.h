@@ -20,9 +20,9 @@ struct CliResult {
   std::string output;
 };
 
-// `shell_setup` runs first in the same shell, e.g. "ulimit -f 1; ".
-inline CliResult runCli(const std::string& arguments, const std::string& shell_setup = "") {
-  const std::string command = shell_setup + cliPath().string() + " " + arguments + " 2>&1";
+// Runs a command line in sh, stdout + stderr captured.
+inline CliResult runShell(const std::string& command_line) {
+  const std::string command = command_line + " 2>&1";
   CliResult result;
   FILE* pipe = popen(command.c_str(), "r");
   if (!pipe) return result;
@@ -31,6 +31,11 @@ inline CliResult runCli(const std::string& arguments, const std::string& shell_s
   const int status = pclose(pipe);
   result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   return result;
+}
+
+// `shell_setup` runs first in the same shell, e.g. "ulimit -f 1; ".
+inline CliResult runCli(const std::string& arguments, const std::string& shell_setup = "") {
+  return runShell(shell_setup + cliPath().string() + " " + arguments);
 }
 
 // A whole text file ("" when it cannot be read).

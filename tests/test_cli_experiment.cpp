@@ -5,16 +5,18 @@
 
 #include <fstream>
 #include <map>
-#include <sstream>
 #include <string>
 #include <vector>
 
+#include "experiment_tables.h"
 #include "test_cli.h"
 
 namespace {
 
+using lumaslam::test::readCsv;
 using lumaslam::test::runCli;
 using lumaslam::test::TempDir;
+using lumaslam::test::writeFile;
 namespace fs = std::filesystem;
 
 // 2 synthetic datasets x 2 configurations x 2 runs, all sequential (deterministic).
@@ -30,34 +32,6 @@ configurations:
   - name: default
     sequential: true
 )";
-
-fs::path writeFile(const fs::path& path, const std::string& text) {
-  std::ofstream(path) << text;
-  return path;
-}
-
-std::vector<std::string> splitCsv(const std::string& line) {
-  std::vector<std::string> fields;
-  std::stringstream in(line);
-  for (std::string field; std::getline(in, field, ',');) fields.push_back(field);
-  return fields;
-}
-
-// results.csv as one map column -> value per row.
-std::vector<std::map<std::string, std::string>> readCsv(const fs::path& file) {
-  std::ifstream in(file);
-  std::string line;
-  std::getline(in, line);
-  const auto header = splitCsv(line);
-  std::vector<std::map<std::string, std::string>> rows;
-  while (std::getline(in, line)) {
-    const auto fields = splitCsv(line);
-    std::map<std::string, std::string> row;
-    for (std::size_t i = 0; i < header.size() && i < fields.size(); ++i) row[header[i]] = fields[i];
-    rows.push_back(row);
-  }
-  return rows;
-}
 
 std::map<fs::path, fs::file_time_type> summaryTimes(const fs::path& runs) {
   std::map<fs::path, fs::file_time_type> times;
