@@ -117,9 +117,12 @@ const bool registered = registerCommand(
     [](CLI::App& cmd) -> Runner {
       auto options = std::make_shared<ExperimentOptions>();
       // Not ->required(): `experiment collect DIR` has neither (checked in runCommand).
-      cmd.add_option("PLAN", options->plan, "Experiment plan (YAML, docs/experiments.md)");
+      cmd.add_option(
+          "PLAN", options->plan,
+          "Experiment plan (YAML, docs/experiments.md); required except for `collect DIR`");
       cmd.add_option("--out", options->out,
-                     "Experiment folder: data/, runs/, results.csv, results.json, summary.csv");
+                     "Experiment folder: data/, runs/, results.csv, results.json, summary.csv; "
+                     "required but with collect");
       cmd.add_option("--emit", options->emit,
                      "Run nothing: write DIR/jobs.txt, one `lumaslam run` line per run not yet "
                      "complete, for GNU parallel; slurm: also DIR/jobs.slurm, an array job")
