@@ -122,7 +122,7 @@ const bool registered = registerCommand(
           "Experiment plan (YAML, docs/experiments.md); required except for `collect DIR`");
       cmd.add_option("--out", options->out,
                      "Experiment folder: data/, runs/, results.csv, results.json, summary.csv; "
-                     "required but with collect");
+                     "required except for `collect DIR`");
       cmd.add_option("--emit", options->emit,
                      "Run nothing: write DIR/jobs.txt, one `lumaslam run` line per run not yet "
                      "complete, for GNU parallel; slurm: also DIR/jobs.slurm, an array job")
