@@ -12,6 +12,7 @@
 #include "experiment_data.h"
 #include "experiment_jobs.h"
 #include "experiment_plan.h"
+#include "experiment_report.h"
 #include "experiment_results.h"
 #include "experiment_run_list.h"
 #include "lumaslam/core/error.h"
@@ -68,20 +69,22 @@ int runExperiment(const ExperimentOptions& options) {
   io::requireWritableFolder(out);
   prepareSynthData(plan, out / "data");
   const auto runs = experimentRuns(plan, out / "runs");
-  writeRunList(plan_file, runs, out);
+  writeRunList(plan, runs, out);
   if (!options.emit.empty()) return emitJobs(runs, out, options.emit);
   const RunsOutcome outcome = runMissing(runs);
   const auto rows = collectResults(runs, outcome.errors);
   writeResults(rows, out);
+  writeExperimentReport(rows, plan.baseline, out);
   std::printf("experiment: %d runs done now, %d kept from before; results in %s\n", outcome.done,
               outcome.kept, (out / "results.csv").string().c_str());
   return outcome.exit_code;
 }
 
 int collectExperiment(const std::filesystem::path& dir) {
-  const auto runs = readRunList(dir);
-  const auto rows = collectResults(runs, {});
+  const RunList list = readRunList(dir);
+  const auto rows = collectResults(list.runs, {});
   writeResults(rows, dir);
+  writeExperimentReport(rows, list.baseline, dir);
   int complete = 0;
   for (const auto& row : rows) complete += row.status == "complete" ? 1 : 0;
   std::printf("experiment collect: %d of %zu runs complete; results in %s\n", complete, rows.size(),
@@ -105,7 +108,8 @@ int runCommand(const ExperimentOptions& options) {
 void addCollect(CLI::App& cmd, ExperimentOptions& options) {
   options.collect_cmd = cmd.add_subcommand(
       "collect",
-      "Tabulate DIR/runs/ into DIR/results.csv, results.json and summary.csv, e.g. after the "
+      "Tabulate DIR/runs/ into DIR/results.csv, results.json, summary.csv and report.html, e.g. "
+      "after the "
       "jobs of --emit ran (runs not done yet: status 'not run')");
   options.collect_cmd->add_option("DIR", options.collect, "Experiment folder (the --out)")
       ->required();
@@ -121,7 +125,8 @@ const bool registered = registerCommand(
           "PLAN", options->plan,
           "Experiment plan (YAML, docs/experiments.md); required except for `collect DIR`");
       cmd.add_option("--out", options->out,
-                     "Experiment folder: data/, runs/, results.csv, results.json, summary.csv; "
+                     "Experiment folder: data/, runs/, results.csv, results.json, summary.csv, "
+                     "report.html; "
                      "required except for `collect DIR`");
       cmd.add_option("--emit", options->emit,
                      "Run nothing: write DIR/jobs.txt, one `lumaslam run` line per run not yet "

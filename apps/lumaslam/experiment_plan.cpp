@@ -240,6 +240,22 @@ void requireUniqueNames(const Plan& plan, const std::vector<T>& items, const cha
   }
 }
 
+// `baseline: NAME` names one of the configurations; without it, the first one.
+std::string baselineOf(const Section& top) {
+  const auto name = findString(top, "baseline");
+  if (!name) return top.plan.configs.front().name;
+  const auto& configs = top.plan.configs;
+  const bool known = std::any_of(configs.begin(), configs.end(),
+                                 [&](const PlanConfig& c) { return c.name == *name; });
+  if (!known) {
+    std::vector<std::string> names;
+    for (const auto& c : configs) names.push_back(c.name);
+    top.invalid("baseline", fmt::format("'{}' is not a configuration (configurations: {})", *name,
+                                        fmt::join(names, ", ")));
+  }
+  return *name;
+}
+
 }  // namespace
 
 Plan readPlan(const std::filesystem::path& file) {
@@ -247,7 +263,7 @@ Plan readPlan(const std::filesystem::path& file) {
   plan.file = file;
   const cv::FileStorage storage = openPlan(file);
   const Section top{plan, storage.root(), ""};
-  requireKnownKeys(top, {"runs", "datasets", "configurations"});
+  requireKnownKeys(top, {"runs", "datasets", "configurations", "baseline"});
   plan.runs = findInt(top, "runs", 1).value_or(1);
   const cv::FileNode datasets = requiredList(top, "datasets");
   for (int i = 0; i < static_cast<int>(datasets.size()); ++i) {
@@ -259,6 +275,7 @@ Plan readPlan(const std::filesystem::path& file) {
   }
   requireUniqueNames(plan, plan.datasets, "datasets");
   requireUniqueNames(plan, plan.configs, "configurations");
+  plan.baseline = baselineOf(top);
   return plan;
 }
 

@@ -41,6 +41,8 @@ struct Plan {
   int runs = 1;
   std::vector<PlanDataset> datasets;  // synth seeds already expanded, one entry each
   std::vector<PlanConfig> configs;
+  std::string baseline;  // `baseline: NAME`, the configuration report.html compares with;
+                         // default: the first configuration
 };
 
 // Throws Error naming the file and key for anything the plan gets wrong. Relative paths in the

@@ -23,18 +23,20 @@ ExperimentRun runOf(const nlohmann::json& entry, const std::filesystem::path& di
 
 }  // namespace
 
-void writeRunList(const std::filesystem::path& plan_file, const std::vector<ExperimentRun>& runs,
+void writeRunList(const Plan& plan, const std::vector<ExperimentRun>& runs,
                   const std::filesystem::path& dir) {
   nlohmann::json list = nlohmann::json::array();
   for (const auto& run : runs) {
     list.push_back({{"dataset", run.dataset}, {"config", run.config}, {"run", run.run}});
   }
   io::OutputFile out(dir / kRunList);
-  out.stream() << nlohmann::json{{"plan", plan_file.string()}, {"runs", list}}.dump(2) << '\n';
+  const nlohmann::json json{
+      {"plan", plan.file.string()}, {"baseline", plan.baseline}, {"runs", list}};
+  out.stream() << json.dump(2) << '\n';
   out.commit();
 }
 
-std::vector<ExperimentRun> readRunList(const std::filesystem::path& dir) {
+RunList readRunList(const std::filesystem::path& dir) {
   const auto file = dir / kRunList;
   std::ifstream in(file);
   if (!in) {
@@ -42,13 +44,15 @@ std::vector<ExperimentRun> readRunList(const std::filesystem::path& dir) {
          dir.string(), kRunList, dir.string());
   }
   const auto json = nlohmann::json::parse(in, nullptr, false);
-  std::vector<ExperimentRun> runs;
+  RunList list;
   try {
-    for (const auto& entry : json.at("runs")) runs.push_back(runOf(entry, dir));
+    for (const auto& entry : json.at("runs")) list.runs.push_back(runOf(entry, dir));
+    const std::string first = list.runs.empty() ? std::string() : list.runs.front().config;
+    list.baseline = json.value("baseline", first);
   } catch (const nlohmann::json::exception& e) {
     fail("{}: not a list of runs: {}", file.string(), e.what());
   }
-  return runs;
+  return list;
 }
 
 }  // namespace lumaslam::cli

@@ -23,6 +23,9 @@ std::string cellHtml(const Cell& cell) {
   std::string attributes;
   if (!cell.key.empty()) attributes += fmt::format(" data-key=\"{}\"", escapeHtml(cell.key));
   if (cell.value) attributes += fmt::format(" data-value=\"{:.17g}\"", *cell.value);
+  for (const auto& [name, value] : cell.attributes) {
+    attributes += fmt::format(" {}=\"{}\"", escapeHtml(name), escapeHtml(value));
+  }
   return fmt::format("<td{}>{}</td>", attributes, escapeHtml(cell.text));
 }
 

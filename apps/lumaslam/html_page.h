@@ -5,6 +5,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 namespace lumaslam::cli {
@@ -12,9 +13,11 @@ namespace lumaslam::cli {
 std::string escapeHtml(std::string_view text);
 
 struct Cell {
-  std::string text;             // shown, escaped on output
-  std::string key;              // data-key attribute, e.g. "ate.rmse"; empty: none
-  std::optional<double> value;  // data-value attribute, full precision
+  std::string text;                  // shown, escaped on output
+  std::string key = {};              // data-key attribute, e.g. "ate.rmse"; empty: none
+  std::optional<double> value = {};  // data-value attribute, full precision
+  // More attributes, e.g. {"data-run", "2"} or {"style", "background:#fff"}; escaped on output.
+  std::vector<std::pair<std::string, std::string>> attributes = {};
   static Cell number(double value, std::string key, int decimals = 6);
   static Cell count(long long value, std::string key);
 };
