@@ -15,10 +15,13 @@
 #include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
 
+#include "chromium_page.h"
 #include "test_cli.h"
 
 namespace {
 
+using lumaslam::test::haveChromium;
+using lumaslam::test::openInChromium;
 using lumaslam::test::readRunSummary;
 using lumaslam::test::readTextFile;
 using lumaslam::test::runCli;
@@ -286,39 +289,6 @@ TEST(CliReportRepeat, ReportsEachRunAndLinksThem) {
               std::to_string(readRunSummary(out / run_k)["tracked"].get<int>()));
     EXPECT_FALSE(imageSources(readTextFile(out / run_k / "report.html")).empty()) << run_k;
   }
-}
-
-// Headless Chromium on `page`: the DOM it built and what it logged (console messages are
-// logged as ":CONSOLE" lines at --enable-logging=stderr).
-struct BrowserResult {
-  int exit_code = -1;
-  std::string dom;
-  std::vector<std::string> console;
-};
-
-BrowserResult openInChromium(const std::filesystem::path& page, const std::filesystem::path& work) {
-  const auto dom = work / "dom.html";
-  const auto log = work / "chromium.log";
-  const std::string command =
-      "timeout 120 chromium --headless=new --no-sandbox --disable-gpu --enable-logging=stderr "
-      "--v=0 --user-data-dir=" +
-      (work / "profile").string() + " --dump-dom file://" + page.string() + " > " + dom.string() +
-      " 2> " + log.string();
-  BrowserResult result;
-  const int status = std::system(command.c_str());
-  result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  result.dom = readTextFile(dom);
-  std::istringstream lines(readTextFile(log));
-  for (std::string line; std::getline(lines, line);) {
-    if (line.find(":CONSOLE") != std::string::npos || line.find("Uncaught") != std::string::npos) {
-      result.console.push_back(line);
-    }
-  }
-  return result;
-}
-
-bool haveChromium() {
-  return std::filesystem::exists("/usr/bin/chromium");
 }
 
 TEST_F(CliReport, OpensInHeadlessChromiumWithoutConsoleErrors) {
