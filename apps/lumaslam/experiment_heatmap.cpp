@@ -43,10 +43,6 @@ std::optional<ColourScale> scaleOf(const std::vector<ResultRow>& rows) {
   return scale;
 }
 
-std::string millimetres(double metres) {
-  return fmt::format("{:.2f}", 1000.0 * metres);
-}
-
 std::string legend(const ColourScale& scale) {
   std::vector<Cell> swatches;
   for (int i = 0; i < kLegendSteps; ++i) {
@@ -77,19 +73,22 @@ std::vector<std::vector<Cell>> heatmapRows(const std::vector<ResultRow>& rows, i
                                            const std::optional<ColourScale>& scale) {
   std::vector<std::vector<Cell>> table;
   for (std::size_t i = 0; i < rows.size(); ++i) {
-    const bool new_cell =
-        i == 0 || rows[i].dataset != rows[i - 1].dataset || rows[i].config != rows[i - 1].config;
-    if (new_cell) {
+    if (i == 0 || !sameCell(rows[i], rows[i - 1])) {
       table.push_back({{rows[i].dataset + " / " + rows[i].config}});
       table.back().resize(1 + runs, Cell{});
     }
-    if (rows[i].run >= 1 && rows[i].run <= runs)
+    if (rows[i].run >= 1 && rows[i].run <= runs) {
       table.back()[rows[i].run] = runCell(rows[i], scale);
+    }
   }
   return table;
 }
 
 }  // namespace
+
+std::string millimetres(double metres) {
+  return fmt::format("{:.2f}", 1000.0 * metres);
+}
 
 std::vector<std::pair<std::string, std::string>> cellAttributes(const std::string& dataset,
                                                                 const std::string& config) {

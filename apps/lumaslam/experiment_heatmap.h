@@ -10,6 +10,9 @@
 
 namespace lumaslam::cli {
 
+// An ATE in metres as report.html shows it: mm with 2 decimals.
+std::string millimetres(double metres);
+
 // data-dataset / data-config attributes of a number of one dataset x configuration.
 std::vector<std::pair<std::string, std::string>> cellAttributes(const std::string& dataset,
                                                                 const std::string& config);

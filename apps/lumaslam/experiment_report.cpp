@@ -16,6 +16,7 @@ namespace {
 // The complete runs of one dataset x configuration and what report.html shows of them.
 struct CellRuns {
   std::string dataset, config;
+  const ResultRow* first = nullptr;
   int runs = 0;
   std::vector<const ResultRow*> complete;
 };
@@ -23,8 +24,8 @@ struct CellRuns {
 std::vector<CellRuns> cellsOf(const std::vector<ResultRow>& rows) {
   std::vector<CellRuns> cells;
   for (const auto& row : rows) {
-    if (cells.empty() || cells.back().dataset != row.dataset || cells.back().config != row.config) {
-      cells.push_back({row.dataset, row.config, 0, {}});
+    if (cells.empty() || !sameCell(*cells.back().first, row)) {
+      cells.push_back({row.dataset, row.config, &row, 0, {}});
     }
     ++cells.back().runs;
     if (row.status == "complete") cells.back().complete.push_back(&row);
@@ -66,7 +67,7 @@ std::optional<double> trackedPercent(const CellRuns& cell) {
   return 100.0 * static_cast<double>(tracked) / static_cast<double>(frames);
 }
 
-// `text` from `value` shown with `decimals`, "–" without a value.
+// A number of `cell` shown as `text`, with its data attributes; "–" without a value.
 Cell numberCell(const CellRuns& cell, const std::string& key, std::optional<double> value,
                 std::string text) {
   if (!value) return {"–"};
@@ -74,7 +75,7 @@ Cell numberCell(const CellRuns& cell, const std::string& key, std::optional<doub
 }
 
 Cell mmCell(const CellRuns& cell, const std::string& key, std::optional<double> metres) {
-  return numberCell(cell, key, metres, metres ? fmt::format("{:.2f}", 1000.0 * *metres) : "");
+  return numberCell(cell, key, metres, metres ? millimetres(*metres) : "");
 }
 
 Cell fixedCell(const CellRuns& cell, const std::string& key, std::optional<double> value,

@@ -135,9 +135,7 @@ void writeSummaryCsv(const std::vector<ResultRow>& rows, const std::filesystem::
   std::vector<const ResultRow*> cell_rows;
   for (std::size_t i = 0; i < rows.size(); ++i) {
     cell_rows.push_back(&rows[i]);
-    const bool last_of_cell = i + 1 == rows.size() || rows[i + 1].dataset != rows[i].dataset ||
-                              rows[i + 1].config != rows[i].config;
-    if (!last_of_cell) continue;
+    if (i + 1 < rows.size() && sameCell(rows[i + 1], rows[i])) continue;
     out.stream() << summaryLine(cell_rows);
     cell_rows.clear();
   }
@@ -145,6 +143,10 @@ void writeSummaryCsv(const std::vector<ResultRow>& rows, const std::filesystem::
 }
 
 }  // namespace
+
+bool sameCell(const ResultRow& a, const ResultRow& b) {
+  return a.dataset == b.dataset && a.config == b.config;
+}
 
 std::vector<ResultRow> collectResults(const std::vector<ExperimentRun>& runs,
                                       const std::map<std::filesystem::path, std::string>& errors) {

@@ -26,6 +26,9 @@ struct ResultRow {
   std::optional<double> ms_per_frame_median;
 };
 
+// True when both rows are runs of the same dataset x configuration (rows come grouped so).
+bool sameCell(const ResultRow& a, const ResultRow& b);
+
 std::vector<ResultRow> collectResults(const std::vector<ExperimentRun>& runs,
                                       const std::map<std::filesystem::path, std::string>& errors);
 
