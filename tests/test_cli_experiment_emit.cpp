@@ -138,15 +138,30 @@ TEST(CliExperimentEmit, RunPrintCommandReadsBackToTheSameLine) {
       "--dataset \"tum:/data/it's here\" --settings s.yaml --out=-o --max-frames 5 "
       "--on-bad-frame stop --strict-settings --enhance clahe --detector none --vocabulary none "
       "--sequential --no-loop-closing --no-motion-evidence --load-map m.bin --localization "
-      "--save-map o.bin --viewer 0 --viewer-address 0.0.0.0 --viewer-paused --viewer-keep";
+      "--save-map o.bin --save-map-every 25 --viewer 0 --viewer-address 0.0.0.0 --viewer-paused "
+      "--viewer-keep";
   const auto first = runCli("run " + options + " --print-command");
   ASSERT_EQ(first.exit_code, 0) << first.output;
-  for (const char* word :
-       {"'--dataset=tum:/data/it'\\''s here'", "--settings=s.yaml", "--out=-o", "--max-frames=5",
-        "--on-bad-frame=stop", "--strict-settings", "--enhance=clahe", "--detector=none",
-        "--vocabulary=none", "--sequential", "--no-loop-closing", "--no-motion-evidence",
-        "--load-map=m.bin", "--localization", "--save-map=o.bin", "--viewer=0",
-        "--viewer-address=0.0.0.0", "--viewer-paused", "--viewer-keep"}) {
+  for (const char* word : {"'--dataset=tum:/data/it'\\''s here'",
+                           "--settings=s.yaml",
+                           "--out=-o",
+                           "--max-frames=5",
+                           "--on-bad-frame=stop",
+                           "--strict-settings",
+                           "--enhance=clahe",
+                           "--detector=none",
+                           "--vocabulary=none",
+                           "--sequential",
+                           "--no-loop-closing",
+                           "--no-motion-evidence",
+                           "--load-map=m.bin",
+                           "--localization",
+                           "--save-map=o.bin",
+                           "--save-map-every=25",
+                           "--viewer=0",
+                           "--viewer-address=0.0.0.0",
+                           "--viewer-paused",
+                           "--viewer-keep"}) {
     EXPECT_NE(first.output.find(std::string(" ") + word), std::string::npos)
         << word << " in " << first.output;
   }

@@ -80,6 +80,10 @@ const bool registered = registerCommand(
       cmd.add_option("--save-map", options->save_map,
                      "Write the map (every map of the atlas) to this file at the end, after the "
                      "results");
+      cmd.add_option("--save-map-every", options->save_map_every,
+                     "With --save-map: also save every N frames (each save atomic), so that a "
+                     "crash or a killed run keeps the map of the last save")
+          ->check(wholeNumber(1, 1'000'000'000));
       cmd.add_option("--viewer", options->viewer_port,
                      "Serve a live view of the run on this port (0: any free port; the page is "
                      "at http://127.0.0.1:PORT/, docs/viewer.md)")
@@ -126,6 +130,9 @@ const bool registered = registerCommand(
           fail("--viewer-paused, --viewer-keep and --viewer-address need --viewer");
         }
         if (options->viewer_port && *repeats > 1) fail("--viewer with --repeat: one run at a time");
+        if (options->save_map_every > 0 && !options->save_map) {
+          fail("--save-map-every needs --save-map FILE");
+        }
         if (options->save_map && *repeats > 1) {
           fail("--save-map with --repeat: every run would write the same file");
         }

@@ -36,6 +36,7 @@ void addMapOptions(std::vector<std::string>& words, const RunOptions& o) {
   if (o.load_map) addOption(words, "--load-map", o.load_map->string());
   addFlag(words, "--localization", o.localization);
   if (o.save_map) addOption(words, "--save-map", o.save_map->string());
+  if (o.save_map_every > 0) addOption(words, "--save-map-every", std::to_string(o.save_map_every));
 }
 
 void addViewerOptions(std::vector<std::string>& words, const RunOptions& o) {

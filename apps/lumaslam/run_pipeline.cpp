@@ -100,6 +100,21 @@ bool recordBadFrame(FrameLoop& loop, std::string what, const RunOptions& options
 // Reads and tracks every frame, one timing.csv row each, until the dataset ends, a signal
 // asks to stop, or a bad frame stops it.
 // With a viewer, each frame is handed to it and the loop waits while the page has paused.
+// run --save-map-every N: a failed save is logged and the run goes on (the last good file
+// stays, the save at the end reports its own error).
+void saveMapPeriodically(Pipeline& system, const RunOptions& options, std::size_t frames) {
+  if (!options.save_map || options.save_map_every == 0 || frames % options.save_map_every != 0) {
+    return;
+  }
+  try {
+    system.saveMap(*options.save_map);
+    spdlog::info("map saved at frame {}: {} keyframes in {}", frames, system.keyFrameCount(),
+                 options.save_map->string());
+  } catch (const Error& e) {
+    spdlog::error("saving the map at frame {} failed: {}", frames, e.what());
+  }
+}
+
 FrameLoop trackFrames(io::DatasetReader& reader, Pipeline& system, io::OutputFile& timing,
                       const RunOptions& options, const StopOnSignal& stop, viewer::Viewer* viewer) {
   constexpr std::size_t kMaxUnreadableInARow = 100;  // a reader that cannot go on
@@ -141,6 +156,7 @@ FrameLoop trackFrames(io::DatasetReader& reader, Pipeline& system, io::OutputFil
     loop.wait_sum += result.timing.detection_wait;
     loop.totals.push_back(result.timing.total);
     ++loop.frames;
+    saveMapPeriodically(system, options, loop.frames);
     if (result.outcome.state == track::TrackingState::Ok) ++loop.tracked;
     if (result.outcome.relocalized) ++loop.relocalized;
     if (viewer) loop.viewer_ms.push_back(publishFrame(*viewer, *frame, result, system));

@@ -24,6 +24,9 @@ struct RunOptions {
   std::optional<std::filesystem::path> load_map;
   bool localization = false;  // needs load_map
   std::optional<std::filesystem::path> save_map;
+  // With save_map: also save every this many frames (0: only at the end), so that a crash or
+  // a killed run leaves the map of its last save (each save is atomic, docs/maps.md).
+  std::size_t save_map_every = 0;
   // A frame that cannot be read or tracked (unreadable image, wrong size, missing depth):
   // skip it with a warning (default), or stop there; either way what was tracked is written.
   enum class BadFrame { Skip, Stop };
