@@ -65,8 +65,8 @@ test-asan: deps
 FUZZ_SECONDS ?= 60
 FUZZ_TARGETS ?= settings trajectory tum_index kitti_calib euroc_sensor box_file map_file \
 	vocabulary experiment_plan
-fuzz: deps
-	@command -v clang++ >/dev/null || { echo "make fuzz needs clang with libFuzzer (apt-get install clang)" >&2; exit 1; }
+fuzz:
+	@scripts/install-deps.sh --fuzz
 	@CC=clang CXX=clang++ cmake -S . -B build-fuzz -G Ninja -DLUMASLAM_FUZZ=ON \
 		-DLUMASLAM_SANITIZE=fuzzer-no-link,address,undefined -DLUMASLAM_BUILD_TESTS=OFF \
 		-DLUMASLAM_BUILD_PYTHON=OFF $(SANITIZER_CMAKE) >/dev/null

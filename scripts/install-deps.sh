@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Installs the Debian packages lumaslam needs. Idempotent and quiet when all are present.
 # Works as root or through sudo; anything else fails with a message naming the packages.
+# --fuzz also installs clang with libFuzzer, for `make fuzz` only (not needed to build or test).
 set -euo pipefail
 
 packages=(
@@ -16,6 +17,12 @@ packages=(
   chromium               # browser tests: the viewer's page and `lumaslam report` pages, headless
   parallel               # GNU parallel: `lumaslam experiment --emit parallel` jobs (and its test)
 )
+if [[ "${1:-}" == "--fuzz" ]]; then
+  packages+=(clang libclang-rt-dev)  # libFuzzer's runtime is in libclang-rt, not in clang
+elif [[ $# -gt 0 ]]; then
+  echo "install-deps: unknown option '$1' (known: --fuzz)" >&2
+  exit 2
+fi
 
 missing=()
 for p in "${packages[@]}"; do
