@@ -54,6 +54,18 @@ TEST_F(CliProgress, OnATerminalVocabTrainShowsImagesExtracted) {
   EXPECT_EQ(piped.output.find('\r'), std::string::npos) << piped.output;
 }
 
+TEST_F(CliProgress, OnATerminalPerturbShowsImagesDone) {
+  ASSERT_EQ(runCli("synth " + data_ + " --preset xyz-rgbd --frames 12").exit_code, 0);
+  const std::string perturb = runOnTerminal(
+      "perturb " + data_ + " " + (dir_.path() / "dark").string() + " --model dark --level 3");
+  EXPECT_NE(perturb.find("\rimage 12/12"), std::string::npos) << perturb;
+  EXPECT_NE(perturb.find("perturbing"), std::string::npos) << perturb;
+  const auto piped = runCli("perturb " + data_ + " " + (dir_.path() / "dark2").string() +
+                            " --model dark --level 3");
+  ASSERT_EQ(piped.exit_code, 0) << piped.output;
+  EXPECT_EQ(piped.output.find('\r'), std::string::npos) << piped.output;
+}
+
 TEST_F(CliProgress, InAPipeThereIsNoProgressLine) {
   const auto synth = runCli("synth " + data_ + " --preset xyz-rgbd --frames 20");
   ASSERT_EQ(synth.exit_code, 0) << synth.output;

@@ -3,10 +3,12 @@
 #include <cstdint>
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "command_registry.h"
 #include "lumaslam/synth/perturb.h"
+#include "progress_line.h"
 
 namespace {
 
@@ -33,7 +35,12 @@ const bool registered = lumaslam::cli::registerCommand(
       cmd.add_option("--seed", o->seed, "Noise seed");
       return [o] {
         using namespace lumaslam::synth;
-        perturbDataset(o->in, o->out, perturbModelFromName(o->model), o->level, o->seed);
+        std::optional<lumaslam::cli::ProgressLine> progress;
+        perturbDataset(o->in, o->out, perturbModelFromName(o->model), o->level, o->seed,
+                       [&progress](std::size_t done, std::size_t total) {
+                         if (!progress) progress.emplace("image", total);
+                         progress->update(done, "perturbing");
+                       });
         return 0;
       };
     });

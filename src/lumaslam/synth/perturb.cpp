@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <mutex>
 #include <vector>
 
 #include <spdlog/spdlog.h>
@@ -216,7 +217,9 @@ std::vector<ImageJob> imageJobs(const fs::path& in, const fs::path& out) {
 }
 
 void perturbImages(const std::vector<ImageJob>& jobs, PerturbModel model, int level,
-                   std::uint64_t seed) {
+                   std::uint64_t seed, const PerturbProgress& on_image) {
+  std::mutex progress_mutex;
+  std::size_t done = 0;
   tbb::parallel_for(size_t{0}, jobs.size(), [&](size_t i) {
     const ImageJob& job = jobs[i];
     const cv::Mat image = cv::imread(job.source.string(), cv::IMREAD_UNCHANGED);
@@ -229,13 +232,17 @@ void perturbImages(const std::vector<ImageJob>& jobs, PerturbModel model, int le
                                                 static_cast<std::uint64_t>(job.index)));
     if (!cv::imwrite(job.target.string(), result))
       fail("{}: cannot write image", job.target.string());
+    if (on_image) {
+      const std::scoped_lock lock(progress_mutex);
+      on_image(++done, jobs.size());
+    }
   });
 }
 
 }  // namespace
 
 int perturbDataset(const fs::path& in, const fs::path& out, PerturbModel model, int level,
-                   std::uint64_t seed) {
+                   std::uint64_t seed, const PerturbProgress& on_image) {
   checkLevel(level);
   if (!fs::is_directory(in)) fail("{}: input dataset folder does not exist", in.string());
   std::error_code ec;
@@ -251,7 +258,7 @@ int perturbDataset(const fs::path& in, const fs::path& out, PerturbModel model, 
   if (ec) fail("{}: cannot copy the dataset to {}: {}", in.string(), work.string(), ec.message());
 
   try {
-    perturbImages(jobs, model, level, seed);
+    perturbImages(jobs, model, level, seed, on_image);
     io::OutputFile note(work / "perturbation.txt");
     note.stream() << "# lumaslam perturb of " << in.string() << "\n"
                   << describePerturbation(model, level) << "\nseed " << seed << "\n";

@@ -4,6 +4,7 @@
 // docs/synthetic.md lists each level's parameters.
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <string>
 #include <string_view>
 
@@ -27,7 +28,11 @@ cv::Mat perturbImage(const cv::Mat& image, PerturbModel model, int level, int in
 // Copies the dataset folder `in` (TUM RGB-D with rgb.txt, or EuRoC with mav0/) to `out` with
 // every camera image perturbed; text, depth and ground-truth files are copied unchanged.
 // Returns the number of images perturbed.
+// `on_image(done, total)` is called after each image is written, one call at a time (images
+// are perturbed in parallel), e.g. for a progress line.
+using PerturbProgress = std::function<void(std::size_t done, std::size_t total)>;
 int perturbDataset(const std::filesystem::path& in, const std::filesystem::path& out,
-                   PerturbModel model, int level, std::uint64_t seed);
+                   PerturbModel model, int level, std::uint64_t seed,
+                   const PerturbProgress& on_image = {});
 
 }  // namespace lumaslam::synth
