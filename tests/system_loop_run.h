@@ -46,12 +46,13 @@ struct LoopRun {
 };
 
 inline LoopRun runLoop(const LoopInput& input, bool loop_closing,
-                       std::optional<io::SensorType> sensor = std::nullopt) {
+                       std::optional<io::SensorType> sensor = std::nullopt,
+                       const SettingsEdit& edit = {}) {
   PipelineOptions options;
   options.enhance_preset = "off";
   options.sequential = true;
   options.loop_closing = loop_closing;
-  Pipeline system(presetSettings(input.lap, {}, sensor), options);
+  Pipeline system(presetSettings(input.lap, edit, sensor), options);
   Trajectory ground_truth;
   LoopRun result;
   for (int i = 0; i < input.frames(); ++i) {
