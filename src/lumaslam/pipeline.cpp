@@ -246,9 +246,7 @@ cv::Mat Pipeline::rightGray(const cv::Mat& image, FrameTiming& timing,
                             const enhance::EnhancementPlan* left_plan) {
   if (left_plan) {
     const auto start = Clock::now();
-    const bool whole_plan = enhancer_->params().stereo == enhance::StereoMapping::kShared;
-    auto enhanced = whole_plan ? enhancer_->apply(image, *left_plan)
-                               : enhancer_->enhanceWith(image, *left_plan);
+    auto enhanced = enhancer_->enhanceRightWith(image, *left_plan);
     timing.enhance += msSince(start);
     return enhanced.gray;
   }

@@ -42,11 +42,7 @@ std::pair<cv::Mat, cv::Mat> enhanceStereoPair(enhance::Enhancer& left_enhancer,
     return {left_enhancer.enhance(left).gray, right_enhancer.enhance(right).gray};
   }
   const enhance::EnhancementPlan plan = left_enhancer.plan(left);
-  const cv::Mat left_gray = left_enhancer.apply(left, plan).gray;
-  if (mapping == enhance::StereoMapping::kShared) {
-    return {left_gray, left_enhancer.apply(right, plan).gray};
-  }
-  return {left_gray, left_enhancer.enhanceWith(right, plan).gray};
+  return {left_enhancer.apply(left, plan).gray, left_enhancer.enhanceRightWith(right, plan).gray};
 }
 
 StereoMatchCounter::StereoMatchCounter(const io::CalibrationHint& calibration,

@@ -191,6 +191,21 @@ EnhancedFrame Enhancer::apply(const cv::Mat& image, const EnhancementPlan& plan)
   return applyTo(prepare(image), plan);
 }
 
+EnhancedFrame Enhancer::enhanceRightWith(const cv::Mat& right,
+                                         const EnhancementPlan& left_plan) const {
+  switch (params_.stereo) {
+    case StereoMapping::kShared:
+      return apply(right, left_plan);
+    case StereoMapping::kDecisions:
+      return enhanceWith(right, left_plan);
+    case StereoMapping::kIndependent:
+      break;
+  }
+  fail(
+      "Enhancer: Enhancement.stereo 'independent' enhances the right image with its own "
+      "Enhancer, not with the left image's plan");
+}
+
 EnhancedFrame Enhancer::enhanceWith(const cv::Mat& image, const EnhancementPlan& decisions) const {
   const Input input = prepare(image);
   return applyTo(input, planFor(input.channel, decisions));

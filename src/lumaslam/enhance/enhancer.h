@@ -60,6 +60,10 @@ class Enhancer {
   // Takes the decisions of `decisions` (gate, compensation table, CLAHE limits) but builds
   // the CLAHE tables from this image's own histograms. Thread-safe.
   EnhancedFrame enhanceWith(const cv::Mat& image, const EnhancementPlan& decisions) const;
+  // The right image of a stereo pair with the left image's plan, as params().stereo says:
+  // `shared` applies the whole plan, `decisions` its decisions with the right image's own CLAHE
+  // tables. Throws Error for `independent` (the right image then has its own Enhancer).
+  EnhancedFrame enhanceRightWith(const cv::Mat& right, const EnhancementPlan& left_plan) const;
 
   // Contrast statistics of the channel as it reaches CLAHE: one entry for the whole image,
   // or one per tile in local mode. `enhance --calibrate` takes their maxima.
