@@ -177,6 +177,36 @@ TEST(EnhanceEnhancer, DarkFramesGetBrighterAndReportWhatWasDone) {
             0);
 }
 
+// The right image of a stereo pair with the left plan: Enhancement.stereo picks the rule.
+TEST(EnhanceEnhancer, RightImageFollowsTheStereoMapping) {
+  cv::Mat left(96, 128, CV_8UC1);
+  cv::Mat right(96, 128, CV_8UC1);
+  cv::randu(left, 0, 60);
+  cv::randu(right, 10, 90);
+  const auto enhanced = [&](StereoMapping mapping) {
+    EnhancerParams params = EnhancerParams::forPreset("best");
+    params.stereo = mapping;
+    Enhancer enhancer(params);
+    const EnhancementPlan plan = enhancer.plan(left);
+    const cv::Mat expected = mapping == StereoMapping::kShared
+                                 ? enhancer.apply(right, plan).gray
+                                 : enhancer.enhanceWith(right, plan).gray;
+    return std::pair{enhancer.enhanceRightWith(right, plan).gray, expected};
+  };
+  for (const auto mapping : {StereoMapping::kShared, StereoMapping::kDecisions}) {
+    const auto [got, expected] = enhanced(mapping);
+    EXPECT_EQ(cv::norm(got, expected, cv::NORM_INF), 0.0);
+  }
+  EXPECT_GT(cv::norm(enhanced(StereoMapping::kShared).first,
+                     enhanced(StereoMapping::kDecisions).first, cv::NORM_INF),
+            0.0);  // the two rules differ on this pair
+  EnhancerParams independent = EnhancerParams::forPreset("best");
+  independent.stereo = StereoMapping::kIndependent;
+  Enhancer enhancer(independent);
+  const EnhancementPlan plan = enhancer.plan(left);
+  EXPECT_THROW((void)enhancer.enhanceRightWith(right, plan), Error);
+}
+
 TEST(EnhanceEnhancer, LocalLimitsStayInRange) {
   EnhancerParams params = EnhancerParams::forPreset("full");
   params.clahe.limit_mode = ClipLimitMode::kLocal;
