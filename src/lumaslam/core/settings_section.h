@@ -88,4 +88,19 @@ class SectionPrinter {
   std::string text_;
 };
 
+// A module's read and print functions from its key list `visit(keys, params)`, e.g.
+//   readSection(file, "Tracking", params, [](auto& keys, auto& p) { visitTrackingKeys(keys, p); })
+template <typename Params, typename Visit>
+void readSection(const SettingsFile& file, std::string section, Params& params, Visit visit) {
+  const SectionReader reader(file, std::move(section));
+  visit(reader, params);
+}
+
+template <typename Params, typename Visit>
+std::string printSection(std::string section, Params params, Visit visit) {
+  SectionPrinter printer(std::move(section));
+  visit(printer, params);
+  return printer.text();
+}
+
 }  // namespace lumaslam::core

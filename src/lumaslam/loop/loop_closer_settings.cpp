@@ -26,15 +26,13 @@ void visitLoopClosingKeys(Keys& keys, LoopCloserParams& p) {
 }  // namespace
 
 void readLoopClosingSettings(const core::SettingsFile& file, LoopCloserParams& params) {
-  const core::SectionReader reader(file, "Loop");
-  visitLoopClosingKeys(reader, params);
+  core::readSection(file, "Loop", params,
+                    [](auto& keys, auto& p) { visitLoopClosingKeys(keys, p); });
 }
 
 std::string printLoopClosingSettings(const LoopCloserParams& params) {
-  core::SectionPrinter printer("Loop");
-  LoopCloserParams copy = params;
-  visitLoopClosingKeys(printer, copy);
-  return printer.text();
+  return core::printSection("Loop", params,
+                            [](auto& keys, auto& p) { visitLoopClosingKeys(keys, p); });
 }
 
 }  // namespace lumaslam::loop

@@ -20,15 +20,13 @@ void visitLocalMappingKeys(Keys& keys, LocalMapperParams& p) {
 }  // namespace
 
 void readLocalMappingSettings(const core::SettingsFile& file, LocalMapperParams& params) {
-  const core::SectionReader reader(file, "LocalMapping");
-  visitLocalMappingKeys(reader, params);
+  core::readSection(file, "LocalMapping", params,
+                    [](auto& keys, auto& p) { visitLocalMappingKeys(keys, p); });
 }
 
 std::string printLocalMappingSettings(const LocalMapperParams& params) {
-  core::SectionPrinter printer("LocalMapping");
-  LocalMapperParams copy = params;
-  visitLocalMappingKeys(printer, copy);
-  return printer.text();
+  return core::printSection("LocalMapping", params,
+                            [](auto& keys, auto& p) { visitLocalMappingKeys(keys, p); });
 }
 
 }  // namespace lumaslam::mapping

@@ -29,15 +29,13 @@ void visitTrackingKeys(Keys& keys, TrackerParams& p) {
 }  // namespace
 
 void readTrackingSettings(const core::SettingsFile& file, TrackerParams& params) {
-  const core::SectionReader reader(file, "Tracking");
-  visitTrackingKeys(reader, params);
+  core::readSection(file, "Tracking", params,
+                    [](auto& keys, auto& p) { visitTrackingKeys(keys, p); });
 }
 
 std::string printTrackingSettings(const TrackerParams& params) {
-  core::SectionPrinter printer("Tracking");
-  TrackerParams copy = params;
-  visitTrackingKeys(printer, copy);
-  return printer.text();
+  return core::printSection("Tracking", params,
+                            [](auto& keys, auto& p) { visitTrackingKeys(keys, p); });
 }
 
 }  // namespace lumaslam::track
