@@ -25,31 +25,38 @@ synth::SequenceRenderer photoWalkers(const std::string& preset, int frames, int 
 }
 
 // Runs `sequence` without a detector, with and without the motion test: with it, every frame
-// tracked, ATE <= 3 cm (issue 16: geometry only) and at most `ratio` of the error without.
-void expectRemovedWithoutADetector(const synth::SequenceRenderer& sequence, double ratio) {
+// tracked, ATE <= 3 cm (issue 16's target: geometry only) and <= `max_ate`, and at most `ratio`
+// of the error without. `max_ate`: ~2x the ATE measured on 2026-12-04 (issue 22; sequential,
+// deterministic; re-measure: the second "ATE rmse" line each test logs).
+void expectRemovedWithoutADetector(const synth::SequenceRenderer& sequence, double ratio,
+                                   double max_ate) {
   const auto before = test::runSynthetic(sequence, withoutDetector(false));
   const auto run = test::runSynthetic(sequence, withoutDetector(true));
   EXPECT_EQ(run.tracked, run.frames);
-  EXPECT_LE(run.ate(), 0.03);
+  EXPECT_LE(run.ate(), 0.03);  // issue 16's target
+  EXPECT_LE(run.ate(), max_ate);
   EXPECT_LE(run.ate(), ratio * before.ate()) << "before " << before.ate();
 }
 
 // Walkers cut from real person photos pass close to the camera (one covers a quarter of the
 // view): without the test the tracker follows them by over a metre (1.23 m -> 4.4 mm).
 TEST(SystemMotionEvidence, KeepsPhotoWalkersOutOfThePoseWithoutADetector) {
-  expectRemovedWithoutADetector(photoWalkers("walking-xyz-rgbd", 100, 1), 0.1);
+  expectRemovedWithoutADetector(photoWalkers("walking-xyz-rgbd", 100, 1), 0.1,
+                                /*max_ate=*/0.009);  // measured 4.4 mm
 }
 
 // The moving crate has no COCO class: no detector could remove it (0.30 m -> 4.5 mm).
 TEST(SystemMotionEvidence, KeepsTheCrateAndProceduralWalkersOutWithoutADetector) {
   expectRemovedWithoutADetector(
-      synth::SequenceRenderer(synth::findPreset("walking-xyz-rgbd"), 100, 1), 1.0 / 3.0);
+      synth::SequenceRenderer(synth::findPreset("walking-xyz-rgbd"), 100, 1), 1.0 / 3.0,
+      /*max_ate=*/0.0095);  // measured 4.5 mm
 }
 
 // A still camera and people walking through the whole view, TUM walking_static (0.59 m ->
-// 3.7 mm).
+// 3.5 mm).
 TEST(SystemMotionEvidence, KeepsAStillCameraStillWhilePeopleWalkBy) {
-  expectRemovedWithoutADetector(photoWalkers("walking-static-rgbd", 100, 1), 1.0 / 3.0);
+  expectRemovedWithoutADetector(photoWalkers("walking-static-rgbd", 100, 1), 1.0 / 3.0,
+                                /*max_ate=*/0.0075);  // measured 3.5 mm
 }
 
 // Nothing moves: the test must not cost accuracy, nor take many static points for moving.
