@@ -10,7 +10,10 @@ using lumaslam::test::runOnPreset;
 TEST(SystemRgbd, TracksStaticSceneWithXyzMotion) {
   const auto run = runOnPreset("xyz-rgbd", 600, 1);
   EXPECT_EQ(run.tracked, run.frames);
-  EXPECT_LT(run.report.ate.stats.rmse, 0.01);
+  EXPECT_LT(run.report.ate.stats.rmse, 0.01);  // issue 5's target
+  // ~2x the measured ATE (issue 22): 2.98 mm on 2026-12-04 (sequential, deterministic; logged
+  // by runOnPreset).
+  EXPECT_LE(run.report.ate.stats.rmse, 0.006);
   EXPECT_GT(run.keyframes, 1U);
 }
 
@@ -18,7 +21,10 @@ TEST(SystemRgbd, TracksStaticSceneWithXyzMotion) {
 TEST(SystemRgbd, TracksStaticSceneWithRpyMotionThreaded) {
   const auto run = runOnPreset("rpy-rgbd", 600, 2, {.sequential = false});
   EXPECT_EQ(run.tracked, run.frames);
-  EXPECT_LT(run.report.ate.stats.rmse, 0.01);
+  EXPECT_LT(run.report.ate.stats.rmse, 0.01);  // issue 5's target
+  // ~2x the worst measured ATE (issue 22): 2.97-3.18 mm in 3 runs on 2026-12-04 (threaded;
+  // logged by runOnPreset).
+  EXPECT_LE(run.report.ate.stats.rmse, 0.0065);
   EXPECT_GT(run.keyframes, 5U);
 }
 
