@@ -53,7 +53,9 @@ TEST(SystemLowLight, EnhancementKeepsTrackingWhereRawImagesFail) {
   const auto enhanced = runDarkened("best", kFrames);
   EXPECT_LT(raw.tracked, raw.frames / 2) << "the darkened sequence is too easy to show anything";
   EXPECT_EQ(enhanced.tracked, enhanced.frames);
-  EXPECT_LT(enhanced.ate_rmse, 0.02);
+  // ~2x the measured ATE (issue 22; was 2 cm): 5.6 mm on 2026-12-04 (sequential,
+  // deterministic; the "enhancement best" line the test logs).
+  EXPECT_LT(enhanced.ate_rmse, 0.012);
 }
 
 }  // namespace
