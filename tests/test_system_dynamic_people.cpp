@@ -35,13 +35,16 @@ TEST(SystemDynamicPeople, YoloRemovalOnPhotoWalkersMeetsTheIssueTarget) {
   // Issue 6: with YoloDetector <= 2 cm; and removal must matter (<= 1/3 of the error without).
   EXPECT_LE(yolo.ate(), 0.02) << "without " << without.ate();
   EXPECT_LE(yolo.ate(), without.ate() / 3.0);
+  // ~2x the measured ATE (issue 22): 5.3 mm on 2026-12-04 (sequential, deterministic; the
+  // "detector yolo" line the test logs).
+  EXPECT_LE(yolo.ate(), 0.011);
 }
 
 // The generator's boxes are tight: features on the background just beside a walker's
 // silhouette survive the depth refinement (their depth is the wall's) but their descriptor
 // patches show the walker. Without the band that Detector.depth_edge keeps masked around the
 // silhouette, this sequence had a 4.8 cm error spike (ATE 7.6 mm); with it every frame stays
-// within 1 cm (ATE 4.1 mm).
+// within 1.2 cm (ATE 4.4 mm).
 TEST(SystemDynamicPeople, GroundTruthBoxRemovalKeepsEveryFrameNearTheTruth) {
   synth::SynthOptions photo_walkers;
   photo_walkers.moving_boxes = 0;
@@ -57,8 +60,13 @@ TEST(SystemDynamicPeople, GroundTruthBoxRemovalKeepsEveryFrameNearTheTruth) {
   options.detector = "boxes:" + box_file.string();
   options.motion_evidence = false;  // box removal alone (issue 6)
   const auto run = test::runSynthetic(sequence, options);
+  spdlog::info("ground-truth boxes: ATE rmse {:.2f} mm, max {:.2f} mm", 1000.0 * run.ate(),
+               1000.0 * run.report.ate.stats.max);
   EXPECT_EQ(run.tracked, run.frames);
   EXPECT_LE(run.ate(), 0.01);  // issue 6's box-file target
+  // ~2x the measured errors (issue 22): ATE 4.38 mm on 2026-12-04 (sequential, deterministic;
+  // logged above); max 11.93 mm, the 2 cm bound was already within 2x.
+  EXPECT_LE(run.ate(), 0.009);
   EXPECT_LE(run.report.ate.stats.max, 0.02);
 }
 
