@@ -85,7 +85,9 @@ std::optional<int> firstNewMap(const AtlasRun& run) {
   return std::nullopt;
 }
 
-void expectMergedAtlas(const std::string& preset,
+// `max_ate`: ~2x the ATE measured on 2026-12-04 (issue 22; sequential, deterministic; the
+// "ATE ... mm" line runWithBlackout prints), much tighter than the 2 cm acceptance.
+void expectMergedAtlas(const std::string& preset, double max_ate,
                        std::optional<io::SensorType> sensor = std::nullopt,
                        int new_map_window = kNewMapWindow) {
   const test::LoopInput input(kLapFrames, kSecondLapFrames, 1, preset);
@@ -103,21 +105,23 @@ void expectMergedAtlas(const std::string& preset,
   EXPECT_EQ(run.maps.size(), 1U) << preset << ": frames left in an unmerged map";
   const int lit_frames = input.frames() - kDarkFrames;
   EXPECT_GE(run.trajectory.size(), static_cast<std::size_t>(lit_frames * 95 / 100)) << preset;
-  EXPECT_LE(run.ate, 0.02) << preset;
+  EXPECT_LE(run.ate, 0.02) << preset;  // the acceptance
+  EXPECT_LE(run.ate, max_ate) << preset;
 }
 
 TEST(SystemAtlas, RgbdStartsANewMapAfterABlackoutAndMergesItOnTheSecondLap) {
-  expectMergedAtlas("loop-rgbd");
+  expectMergedAtlas("loop-rgbd", /*max_ate=*/0.0095);  // measured 4.6 mm
 }
 
 TEST(SystemAtlas, StereoStartsANewMapAfterABlackoutAndMergesItOnTheSecondLap) {
-  expectMergedAtlas("loop-stereo");
+  expectMergedAtlas("loop-stereo", /*max_ate=*/0.0125);  // measured 6.1 mm
 }
 
 // Monocular (the left camera of loop-stereo): the new map needs a two-view initialisation
 // (4 frames here) and is merged by a Sim3, which also corrects its scale (0.86 measured).
 TEST(SystemAtlas, MonocularStartsANewMapAfterABlackoutAndMergesItOnTheSecondLap) {
-  expectMergedAtlas("loop-stereo", io::SensorType::Monocular, 10);
+  // Measured 5.9 mm (Sim3).
+  expectMergedAtlas("loop-stereo", /*max_ate=*/0.012, io::SensorType::Monocular, 10);
 }
 
 // The same RGB-D run with new maps off (System.newMapAfter < 0): the tracker stays lost from
