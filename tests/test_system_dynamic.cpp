@@ -57,6 +57,9 @@ TEST(SystemDynamic, BoxRemovalCutsTheErrorOnWalkingXyz) {
   // Issue 6: removal cuts the error to a third at most, and below 1 cm.
   EXPECT_LE(with.ate(), without.ate() / 3.0) << "without " << without.ate();
   EXPECT_LE(with.ate(), 0.01);
+  // ~2x the measured ATE (issue 22): 3.8 mm on 2026-12-04 (sequential, deterministic; the
+  // "detector box_file" line the test logs).
+  EXPECT_LE(with.ate(), 0.008);
 }
 
 // The real detector through System: YOLOv5n 320 finds the synthetic walkers on some frames

@@ -27,7 +27,10 @@ TEST(SystemDynamicMemory, RecentBoxesCoverForMissedDetections) {
   const auto without_memory =
       test::runSynthetic(sequence, options, {}, "Detector.memory_frames: 0\n");
   EXPECT_EQ(with_memory.tracked, with_memory.frames);
-  EXPECT_LE(with_memory.ate(), 0.01);
+  EXPECT_LE(with_memory.ate(), 0.01);  // issue 6's box-file target
+  // ~2x the measured ATE (issue 22): 4.0 mm on 2026-12-04 (sequential, deterministic; the
+  // first "ATE rmse" line the test logs).
+  EXPECT_LE(with_memory.ate(), 0.0085);
   EXPECT_LE(with_memory.ate(), without_memory.ate() / 2.0)
       << "without memory " << without_memory.ate();
 }
