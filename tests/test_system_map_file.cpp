@@ -101,7 +101,9 @@ TEST(SystemMapFile, LocalizesOnAnotherTrajectoryWithoutAddingKeyframes) {
   const auto report = eval::evaluate(system.frameTrajectory(), ground_truth, no_alignment);
   spdlog::info("localized {}/{}, ATE {:.4f} m in the map's frame", localized, frames,
                report.ate.stats.rmse);
-  EXPECT_LE(report.ate.stats.rmse, 0.01);
+  // ~2x the measured ATE (issue 22; was 1 cm): 3.7 mm on 2026-12-04 (sequential,
+  // deterministic; logged above).
+  EXPECT_LE(report.ate.stats.rmse, 0.008);
 }
 
 TEST(SystemMapFile, BadFilesAreClearErrorsAndLoadNothing) {
@@ -146,6 +148,7 @@ struct SensorCase {
   const char* preset;
   io::SensorType sensor;
   eval::AlignMode align;
+  double max_ate;  // ~2x the measured ATE (issue 22; was 1 cm), sequential, logged below
 };
 
 class SystemMapFileSensors : public ::testing::TestWithParam<SensorCase> {};
@@ -187,14 +190,15 @@ TEST_P(SystemMapFileSensors, RoundTripAndLocalization) {
   const auto report = eval::evaluate(localizing.frameTrajectory(), ground_truth, options);
   spdlog::info("{}: localized {}/{}, ATE {:.4f} m", c.preset, localized, frames,
                report.ate.stats.rmse);
-  EXPECT_LE(report.ate.stats.rmse, 0.01);
+  EXPECT_LE(report.ate.stats.rmse, c.max_ate);
 }
 
+// max_ate measured on 2026-12-04: 2.6 mm (stereo) and 2.8 mm (monocular, Sim3).
+constexpr SensorCase kStereo{"xyz-stereo", io::SensorType::Stereo, eval::AlignMode::SE3, 0.0055};
+constexpr SensorCase kMono{"xyz-rgbd", io::SensorType::Monocular, eval::AlignMode::Sim3, 0.006};
+
 INSTANTIATE_TEST_SUITE_P(
-    Sensors, SystemMapFileSensors,
-    ::testing::Values(SensorCase{"xyz-stereo", io::SensorType::Stereo, eval::AlignMode::SE3},
-                      SensorCase{"xyz-rgbd", io::SensorType::Monocular, eval::AlignMode::Sim3}),
-    [](const auto& info) {
+    Sensors, SystemMapFileSensors, ::testing::Values(kStereo, kMono), [](const auto& info) {
       return std::string(info.param.sensor == io::SensorType::Stereo ? "Stereo" : "Monocular");
     });
 
