@@ -145,7 +145,10 @@ double rms(const std::vector<double>& values) {
 }
 
 // Checks the acceptance after `dark_frames` disturbed frames; returns how many were lost.
-int expectRecoveredInTheSameMap(const DisturbedRun& run, int dark_frames, const char* what) {
+// `max_rms`: position RMSE from the disturbance on, ~2x the value measured on 2026-12-04
+// (issue 22; the "position RMSE" the test prints; threaded: worst of 3 runs).
+int expectRecoveredInTheSameMap(const DisturbedRun& run, int dark_frames, const char* what,
+                                double max_rms) {
   const int light_back = kFirstDark + dark_frames;
   // Disturbed frames are Lost with no pose in the trajectory, or tracked (checked below with
   // the rest).
@@ -196,13 +199,14 @@ int expectRecoveredInTheSameMap(const DisturbedRun& run, int dark_frames, const 
       run.outcomes[static_cast<std::size_t>(*recovered)].relocalized ? " by relocalization" : "",
       run.tracking_ms[static_cast<std::size_t>(*recovered)], median(run.tracking_ms), errors.size(),
       1000.0 * rms(errors), 1000.0 * *std::max_element(errors.begin(), errors.end()));
-  EXPECT_LT(rms(errors), 0.02) << what;
+  EXPECT_LT(rms(errors), 0.02) << what;  // issue 7's acceptance
+  EXPECT_LE(rms(errors), max_rms) << what;
   return lost;
 }
 
 TEST(SystemRelocalization, RecoversAfterTwentyBlackFrames) {
   const auto run = runDisturbed(20, black, true);
-  EXPECT_EQ(expectRecoveredInTheSameMap(run, 20, "blackout"), 20);
+  EXPECT_EQ(expectRecoveredInTheSameMap(run, 20, "blackout", 0.014), 20);  // measured 6.8 mm
   // The camera turned too far for the last-pose search (see the test without vocabulary):
   // the relocalizer is what found the map again.
   EXPECT_TRUE(recoveredByRelocalizer(run, kFirstDark + 20));
@@ -213,7 +217,8 @@ TEST(SystemRelocalization, RecoversAfterTwentyBlackFrames) {
 // keyframes enter the database from the tracker while mapping culls them from its thread.
 TEST(SystemRelocalization, RecoversAfterTenOverExposedFramesThreaded) {
   const auto run = runDisturbed(10, overExposed, true, /*sequential=*/false);
-  EXPECT_GT(expectRecoveredInTheSameMap(run, 10, "over-exposure x5"), 0);
+  // Measured 7.2-8.5 mm in 3 runs.
+  EXPECT_GT(expectRecoveredInTheSameMap(run, 10, "over-exposure x5", 0.0175), 0);
   EXPECT_TRUE(recoveredByRelocalizer(run, kFirstDark + 10));
 }
 
@@ -222,7 +227,7 @@ TEST(SystemRelocalization, RecoversAfterTenOverExposedFramesThreaded) {
 // Lost or true (<= 2 cm); here the last-pose search finds the map again (slower motion).
 TEST(SystemRelocalization, StereoOverExposedFramesAreLostOrTrue) {
   const auto run = runDisturbed(10, overExposed, true, /*sequential=*/true, Sensor::Stereo);
-  expectRecoveredInTheSameMap(run, 10, "stereo over-exposure x5");
+  expectRecoveredInTheSameMap(run, 10, "stereo over-exposure x5", 0.0055);  // measured 2.6 mm
 }
 
 // Without a vocabulary the camera has turned too far during the blackout for the search around
@@ -231,7 +236,8 @@ TEST(SystemRelocalization, StereoOverExposedFramesAreLostOrTrue) {
 // same map and with true poses, and nothing is reported as relocalized.
 TEST(SystemRelocalization, WithoutVocabularyTheReferenceKeyFrameRecoversTheBlackout) {
   const auto run = runDisturbed(20, black, false);
-  EXPECT_EQ(expectRecoveredInTheSameMap(run, 20, "blackout without vocabulary"), 20);
+  // Measured 6.6 mm.
+  EXPECT_EQ(expectRecoveredInTheSameMap(run, 20, "blackout without vocabulary", 0.0135), 20);
   for (const auto& outcome : run.outcomes) EXPECT_FALSE(outcome.relocalized);
 }
 
