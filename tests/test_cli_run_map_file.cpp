@@ -38,7 +38,9 @@ TEST(CliRunMapFile, SavesDescribesAndLocalizesInAMap) {
   EXPECT_GE(summary["tracked"].get<int>(), 57);
   EXPECT_EQ(summary["map_file"]["keyframes_added"].get<int>(), 0);
   EXPECT_TRUE(summary["map_file"]["localization"].get<bool>());
-  EXPECT_LT(summary["evaluation"]["ate"]["rmse"].get<double>(), 0.02);
+  // ~2x the measured ATE (issue 22; was 2 cm): 2.77 mm on 2026-12-04 (--sequential,
+  // deterministic; evaluation.ate.rmse in localized/summary.json of these commands).
+  EXPECT_LT(summary["evaluation"]["ate"]["rmse"].get<double>(), 0.006);
 }
 
 TEST(CliRunMapFile, BadMapFilesAndFlagsAreClearErrors) {
