@@ -6,6 +6,7 @@
 // an ATE bound.
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <fstream>
 #include <sstream>
 
@@ -102,6 +103,8 @@ TEST_P(CliRunRealRgbd, TracksEveryFrameWithDefaultFlags) {
   EXPECT_LE(longestLostRun(out), 10) << run.output;
   EXPECT_GE(summary["tracked"].get<int>(), frames - 10) << run.output;
   ASSERT_TRUE(summary.contains("evaluation")) << run.output;
+  std::printf("stride %d: tracked %d/%d, ATE rmse %.1f mm\n", stride, summary["tracked"].get<int>(),
+              frames, 1000.0 * summary["evaluation"]["ate"]["rmse"].get<double>());
   EXPECT_LT(summary["evaluation"]["ate"]["rmse"].get<double>(), max_ate_m);
   // The atlas in the summary: every tracked frame in one of its maps, the main one being
   // trajectory.txt (the others, if tracking ever started one, in trajectory_map<ID>.txt).
@@ -115,6 +118,8 @@ TEST_P(CliRunRealRgbd, TracksEveryFrameWithDefaultFlags) {
   EXPECT_EQ(in_maps, summary["tracked"].get<int>());
 }
 
+// 6 cm is already within 2x (issue 22): 32.1-34.4 mm (stride 1) and 33.7-34.6 mm (stride 4),
+// 3 runs each on 2026-12-04 (threaded; logged above).
 INSTANTIATE_TEST_SUITE_P(SevenScenes, CliRunRealRgbd,
                          ::testing::Values(RealRun{1, 0.06}, RealRun{4, 0.06}),
                          [](const auto& info) {
