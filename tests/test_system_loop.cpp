@@ -22,6 +22,9 @@ TEST(SystemLoop, ClosesTheLoopOnLoopStereoAndLowersTheAte) {
   EXPECT_GT(closed.loops.front().current, closed.loops.front().loop + 5);
   // Issue 7's acceptance: ATE after closing <= 50 % of the ATE with loop closing off.
   EXPECT_LE(closed.ate, 0.5 * open.ate);
+  // ~2x the measured ATE (issue 22): 4.8 mm closed (13.1 mm open) on 2026-12-04 (sequential,
+  // deterministic; the "loop closing on" line the test prints).
+  EXPECT_LE(closed.ate, 0.010);
 }
 
 }  // namespace
