@@ -165,6 +165,26 @@ TEST(BoxLabels, ReadsTheSharedLabelsAndVocAnnotations) {
   EXPECT_NE(errorOf([&] { readVocAnnotation(bad_xml); }).find("a.xml"), std::string::npos);
 }
 
+// Found by fuzzing (fuzz/regressions/box_labels): std::regex recursed once per character and
+// overflowed the stack on a long element; the plain search reads it, same rules as before.
+TEST(BoxLabels, VocAnnotationWithLongElementsAndRegexRules) {
+  test::TempDir dir("detect_labels_long");
+  const std::string long_name(200000, 'a');
+  const auto xml =
+      writeFile(dir, "long.xml",
+                "<filename>\n " + long_name + " \t</filename><object>" + std::string(200000, ' ') +
+                    "<name>person</name><bndbox><xmin>1</xmin><ymin>2</ymin>"
+                    "<xmax>4</xmax><ymax>7</ymax></bndbox></object><object>");
+  const auto voc = readVocAnnotation(xml);
+  EXPECT_EQ(voc.filename, long_name);
+  ASSERT_EQ(voc.boxes.size(), 1u);  // an <object> without </object> is not one
+  EXPECT_EQ(voc.boxes[0].box, cv::Rect2f(1, 2, 3, 5));
+  // The first <tag> whose text has no '<' and ends at </tag> counts.
+  const auto nested =
+      writeFile(dir, "nested.xml", "<filename><b>x</b></filename><filename> c.jpg </filename>");
+  EXPECT_EQ(readVocAnnotation(nested).filename, "c.jpg");
+}
+
 TEST(MatchDetections, CountsHitsMissesAndDuplicates) {
   const std::vector<cv::Rect2f> truth{{0, 0, 10, 10}, {100, 100, 10, 10}};
   Detections detections{

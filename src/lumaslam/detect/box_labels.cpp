@@ -1,8 +1,8 @@
 #include "lumaslam/detect/box_labels.h"
 
 #include <fstream>
-#include <regex>
 #include <sstream>
+#include <string_view>
 
 #include "lumaslam/core/error.h"
 #include "lumaslam/core/read_file.h"
@@ -10,11 +10,39 @@
 namespace lumaslam::detect {
 namespace {
 
-// Text of the first <tag>...</tag> in `xml`, or empty.
+constexpr std::string_view kSpace = " \t\n\v\f\r";
+
+// Text of the first <tag>...</tag> in `xml` whose text holds no '<', without surrounding
+// whitespace; empty if there is none. A plain search: std::regex recurses once per character
+// and overflowed the stack on a 40 KB element (fuzzing, fuzz/regressions/box_labels).
 std::string element(const std::string& xml, const std::string& tag) {
-  const std::regex pattern("<" + tag + ">\\s*([^<]*?)\\s*</" + tag + ">");
-  std::smatch match;
-  return std::regex_search(xml, match, pattern) ? match[1].str() : std::string();
+  const std::string open = "<" + tag + ">";
+  const std::string close = "</" + tag + ">";
+  for (auto start = xml.find(open); start != std::string::npos; start = xml.find(open, start + 1)) {
+    const auto text_begin = start + open.size();
+    const auto text_end = xml.find('<', text_begin);
+    if (text_end == std::string::npos) break;
+    if (xml.compare(text_end, close.size(), close) != 0) continue;
+    const std::string_view text(xml.data() + text_begin, text_end - text_begin);
+    const auto first = text.find_first_not_of(kSpace);
+    if (first == std::string_view::npos) return {};
+    return std::string(text.substr(first, text.find_last_not_of(kSpace) - first + 1));
+  }
+  return {};
+}
+
+// The texts between each <object> and the next </object>, in file order.
+std::vector<std::string> objects(const std::string& xml) {
+  const std::string open = "<object>";
+  const std::string close = "</object>";
+  std::vector<std::string> found;
+  for (auto start = xml.find(open); start != std::string::npos;) {
+    const auto end = xml.find(close, start + open.size());
+    if (end == std::string::npos) break;
+    found.push_back(xml.substr(start + open.size(), end - start - open.size()));
+    start = xml.find(open, end + close.size());
+  }
+  return found;
 }
 
 float coordinate(const std::string& object, const std::string& tag,
@@ -61,10 +89,7 @@ VocAnnotation readVocAnnotation(const std::filesystem::path& file) {
   VocAnnotation annotation;
   annotation.filename = element(xml, "filename");
   if (annotation.filename.empty()) fail("{}: VOC annotation has no <filename>", file.string());
-  const std::regex object_pattern("<object>([\\s\\S]*?)</object>");
-  for (auto it = std::sregex_iterator(xml.begin(), xml.end(), object_pattern);
-       it != std::sregex_iterator(); ++it) {
-    const std::string object = (*it)[1].str();
+  for (const std::string& object : objects(xml)) {
     LabeledBox labeled;
     labeled.class_name = element(object, "name");
     if (labeled.class_name.empty()) fail("{}: an <object> has no <name>", file.string());
