@@ -63,8 +63,9 @@ test-asan: deps
 # with ASan and UBSan, each target run FUZZ_SECONDS on its seeds; fails on any finding.
 # FUZZ_TARGETS narrows the run, e.g. FUZZ_TARGETS='map_file vocabulary'.
 FUZZ_SECONDS ?= 60
-FUZZ_TARGETS ?= settings trajectory tum_index kitti_calib euroc_sensor euroc_index \
-	folder_timestamps box_file class_names box_labels map_file vocabulary experiment_plan
+FUZZ_TARGETS ?= settings trajectory tum_index kitti_calib kitti_poses euroc_sensor \
+	euroc_index folder_timestamps box_file class_names box_labels map_file vocabulary \
+	experiment_plan
 fuzz:
 	@scripts/install-deps.sh --fuzz
 	@CC=clang CXX=clang++ cmake -S . -B build-fuzz -G Ninja -DLUMASLAM_FUZZ=ON \
