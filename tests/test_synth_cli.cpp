@@ -3,8 +3,10 @@
 
 #include <cstdlib>
 #include <fstream>
+#include <map>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "test_paths.h"
@@ -104,4 +106,52 @@ TEST(SynthCli, SyncedDepthWritesDepthAtTheColourStamps) {
   EXPECT_EQ(stamps(synced / "depth.txt"), stamps(synced / "rgb.txt"));
   EXPECT_NE(readText(jittered / "rgb" / (stamps(jittered / "rgb.txt")[1] + ".png")),
             readText(synced / "rgb" / (stamps(synced / "rgb.txt")[1] + ".png")));
+}
+
+// --list against two independent sources: the preset table of docs/synthetic.md (name, rig,
+// frames) and what `synth --preset NAME` accepts. Every documented preset is listed with its
+// frame count and renders one frame in its rig's layout; a name not listed is refused.
+TEST(SynthCli, ListNamesEveryPresetThatSynthAccepts) {
+  lumaslam::test::TempDir dir("synth_cli_list");
+  const fs::path log = dir.path() / "log.txt";
+  ASSERT_EQ(run("synth --list", log), 0) << readText(log);
+  // Lines "NAME (N frames): description".
+  std::map<std::string, std::string> listed;  // name -> frames
+  std::istringstream lines(readText(log));
+  for (std::string line; std::getline(lines, line);) {
+    const auto open = line.find(" (");
+    ASSERT_NE(open, std::string::npos) << line;
+    listed[line.substr(0, open)] = line.substr(open + 2, line.find(' ', open + 2) - open - 2);
+  }
+
+  // The docs table "| preset | rig | trajectory | frames | what it tests |" under "## Presets".
+  std::map<std::string, std::pair<std::string, std::string>> documented;  // name -> rig, frames
+  std::istringstream docs(readText(lumaslam::test::sourceDir() / "docs/synthetic.md"));
+  bool in_presets = false;
+  for (std::string line; std::getline(docs, line);) {
+    if (line.rfind("## ", 0) == 0) in_presets = line == "## Presets";
+    if (!in_presets || line.rfind("| ", 0) != 0 || line.rfind("| preset ", 0) == 0) continue;
+    std::vector<std::string> cells;
+    std::istringstream row(line.substr(1));
+    for (std::string cell; std::getline(row, cell, '|');)
+      cells.push_back(cell.substr(1, cell.size() - 2));
+    ASSERT_GE(cells.size(), 4u) << line;
+    documented[cells[0]] = {cells[1], cells[3]};
+  }
+  ASSERT_GE(documented.size(), 10u);
+  ASSERT_EQ(listed.size(), documented.size());
+
+  for (const auto& [name, doc] : documented) {
+    SCOPED_TRACE(name);
+    ASSERT_TRUE(listed.count(name));
+    EXPECT_EQ(listed[name], doc.second);
+    const fs::path out = dir.path() / name;
+    ASSERT_EQ(run("synth " + out.string() + " --preset " + name + " --frames 1", log), 0)
+        << readText(log);
+    EXPECT_TRUE(fs::exists(out / (doc.first == "stereo" ? "mav0/cam1/data.csv" : "rgb.txt")));
+    fs::remove_all(out);
+  }
+  EXPECT_FALSE(listed.count("stereo-xyz"));
+  EXPECT_NE(run("synth " + (dir.path() / "x").string() + " --preset stereo-xyz --frames 1", log),
+            0);
 }
