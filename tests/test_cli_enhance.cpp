@@ -182,7 +182,7 @@ TEST(CliEnhance, EvaluateDarkenedScoresEveryCandidateAtEachLevel) {
 // --evaluate-stereo on 2 EuRoC V1_01 frames: off and each of best, paper, clahe with the
 // independent, decisions and shared right-image mappings; clahe decisions equals clahe
 // independent (a fixed limit and no gate: nothing to share, as the docs say). A dataset
-// without a stereo calibration is an error.
+// without a stereo calibration is an error naming it.
 TEST(CliEnhance, EvaluateStereoCountsMatchesPerFrameForEveryMapping) {
   const auto euroc = lumaslam::test::dataDir() / "euroc/V1_01_easy_micro";
   const RunResult run =
@@ -205,8 +205,10 @@ TEST(CliEnhance, EvaluateStereoCountsMatchesPerFrameForEveryMapping) {
 
   const RunResult mono =
       runCli("enhance --evaluate-stereo euroc-mono:" + euroc.string() + " --max-frames 1");
-  EXPECT_NE(mono.exit_code, 0);
-  EXPECT_NE(mono.output.find("stereo calibration"), std::string::npos) << mono.output;
+  EXPECT_EQ(mono.exit_code, 1);
+  EXPECT_NE(mono.output.find("euroc-mono:" + euroc.string() + ": no stereo calibration"),
+            std::string::npos)
+      << mono.output;
 }
 
 }  // namespace

@@ -219,7 +219,9 @@ int runEvaluateDarkened(const EnhanceOptions& options) {
 int runEvaluateStereo(const EnhanceOptions& options) {
   auto reader = io::openDataset(options.evaluate_stereo);
   const auto calibration = reader->calibration();
-  if (!calibration) fail("{}: no calibration, cannot rectify", options.evaluate_stereo);
+  if (!calibration || !calibration->right || !calibration->T_left_right)
+    fail("{}: no stereo calibration (right camera, T_left_right), cannot rectify",
+         options.evaluate_stereo);
   const StereoMatchCounter counter(*calibration, feature::OrbSettings{});
   struct Mode {
     std::string name;
