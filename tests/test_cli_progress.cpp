@@ -48,6 +48,13 @@ TEST_F(CliProgress, OnATerminalVocabTrainShowsImagesExtracted) {
                     " --k 4 --levels 2 --max-images 12");
   EXPECT_NE(train.find("\rimage 12/12"), std::string::npos) << train;
   EXPECT_NE(train.find("extracting"), std::string::npos) << train;
+  // The k-majority clustering: every descriptor ends in a leaf ("descriptors N" is printed).
+  const auto printed = train.find("\ndescriptors ");
+  ASSERT_NE(printed, std::string::npos) << train;
+  const auto digits = printed + 13;
+  const std::string count = train.substr(digits, train.find_first_of("\r\n", digits) - digits);
+  EXPECT_NE(train.find("\rdescriptor " + count + "/" + count), std::string::npos) << train;
+  EXPECT_NE(train.find("clustering"), std::string::npos) << train;
   const auto piped = runCli("vocab train " + data_ + "/rgb --out " +
                             (dir_.path() / "w.bin").string() + " --k 4 --levels 2");
   ASSERT_EQ(piped.exit_code, 0) << piped.output;

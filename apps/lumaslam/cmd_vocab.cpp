@@ -101,7 +101,13 @@ int runTrain(const VocabOptions& options) {
   spdlog::info("{} images, {} ORB descriptors in {:.1f} s", descriptors.size(), count,
                secondsSince(start));
   const auto train_start = std::chrono::steady_clock::now();
-  const loop::Vocabulary vocabulary = loop::trainVocabulary(descriptors, options.training);
+  std::optional<ProgressLine> clustering;
+  const loop::Vocabulary vocabulary = loop::trainVocabulary(
+      descriptors, options.training, [&clustering](std::size_t done, std::size_t total) {
+        if (!clustering) clustering.emplace("descriptor", total);
+        clustering->update(done, "clustering");
+      });
+  clustering.reset();
   const double train_seconds = secondsSince(train_start);
   loop::saveVocabulary(vocabulary, options.out);
   std::printf("images %zu\ndescriptors %zu\ntraining seconds %.2f\n", descriptors.size(), count,

@@ -80,10 +80,12 @@ struct Clusters {
 
 class TreeBuilder {
  public:
-  TreeBuilder(const std::vector<std::uint8_t>& all, const TrainingParams& params)
-      : all_(all.data()), params_(params), rng_(params.seed) {}
+  TreeBuilder(const std::vector<std::uint8_t>& all, const TrainingParams& params,
+              const TrainingProgress& on_progress)
+      : all_(all.data()), params_(params), on_progress_(on_progress), rng_(params.seed) {}
 
   VocabularyData build(std::vector<std::uint32_t> members) {
+    total_ = members.size();
     data_.branching = params_.branching;
     data_.depth = params_.depth;
     addNode(Descriptor{});
@@ -98,6 +100,11 @@ class TreeBuilder {
   }
 
  private:
+  void settled(std::size_t count) {
+    done_ += count;
+    if (on_progress_) on_progress_(done_, total_);
+  }
+
   const std::uint8_t* at(std::uint32_t m) const {
     return all_ + static_cast<std::size_t>(m) * kDescriptorBytes;
   }
@@ -111,10 +118,11 @@ class TreeBuilder {
   }
 
   void split(NodeId node, std::vector<std::uint32_t> members, int level) {
-    if (level >= params_.depth || members.size() <= 1) return;
+    if (level >= params_.depth || members.size() <= 1) return settled(members.size());
+    const std::size_t count = members.size();
     Clusters clusters = kMajority(members);
     members = {};
-    if (clusters.centres.size() <= 1 && node != 0) return;  // nothing to separate
+    if (clusters.centres.size() <= 1 && node != 0) return settled(count);  // nothing to separate
     const auto first = static_cast<NodeId>(data_.nodeCount());
     for (const auto& centre : clusters.centres) addNode(centre);
     data_.first_child[node] = first;
@@ -217,7 +225,10 @@ class TreeBuilder {
 
   const std::uint8_t* all_;
   TrainingParams params_;
+  const TrainingProgress& on_progress_;
   std::mt19937_64 rng_;
+  std::size_t total_ = 0;  // descriptors to place
+  std::size_t done_ = 0;   // descriptors settled in a leaf
   VocabularyData data_;
 };
 
@@ -235,7 +246,8 @@ void checkParams(const TrainingParams& params) {
 
 }  // namespace
 
-Vocabulary trainVocabulary(const std::vector<cv::Mat>& images, const TrainingParams& params) {
+Vocabulary trainVocabulary(const std::vector<cv::Mat>& images, const TrainingParams& params,
+                           const TrainingProgress& on_progress) {
   checkParams(params);
   std::vector<std::uint8_t> all;
   std::vector<std::uint32_t> image_of;
@@ -255,7 +267,7 @@ Vocabulary trainVocabulary(const std::vector<cv::Mat>& images, const TrainingPar
 
   std::vector<std::uint32_t> members(image_of.size());
   for (std::uint32_t m = 0; m < members.size(); ++m) members[m] = m;
-  VocabularyData data = TreeBuilder(all, params).build(std::move(members));
+  VocabularyData data = TreeBuilder(all, params, on_progress).build(std::move(members));
   Vocabulary unweighted(data, "trained vocabulary");
 
   // IDF (DBoW2 TF_IDF): log(N / n_i), n_i = training images in which word i occurs.
