@@ -36,6 +36,8 @@ SEQUENCES = {
                            "half sphere, three photo walkers"),
     "walking-static": ("walking-static-rgbd", ["--people-images", "{people}", "--moving-boxes", "0"],
                        "still camera, photo walkers"),
+    "sitting": ("sitting-xyz-rgbd", ["--people-images", "{people}"],
+                "photo people sitting and shifting a few cm (the motion test must not hurt)"),
     "static": ("xyz-rgbd", [], "no people (the motion test must not hurt)"),
 }
 

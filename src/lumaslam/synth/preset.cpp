@@ -77,6 +77,13 @@ std::vector<Preset> buildPresets() {
            300);
   p.walkers = 3;
   presets.push_back(p);
+  p = make(
+      "sitting-xyz-rgbd",
+      "RGB-D xyz shake, two people sitting in view and shifting a few cm (TUM fr3 sitting_xyz)",
+      Rgbd, Xyz, 300);
+  p.walkers = 2;
+  p.walkers_sitting = true;
+  presets.push_back(p);
 
   p = make("flash-rgbd",
            "RGB-D xyz with sudden exposure jumps (x3 over-exposed, x0.2 dark) for a few frames",

@@ -22,6 +22,8 @@ struct Preset {
   // Walkers stay in the camera's (rotating) view instead of crossing a fixed spot: see
   // SceneOptions::walkers_follow_view.
   bool walkers_follow_view = false;
+  // People who stay put (TUM fr3 sitting_*): see SceneOptions::walkers_sitting.
+  bool walkers_sitting = false;
   int moving_boxes = 0;
   bool spotlight = false;
   LightingSchedule lighting;

@@ -81,6 +81,10 @@ struct SceneOptions {
   // so they stay in a fast-rotating view and cover up to ~40% of it (like TUM fr3 walking_rpy,
   // where people move in front of the camera for most of the sequence).
   std::function<Eigen::Isometry3d(double)> walkers_follow_view;
+  // Walkers stay put like people sitting at a desk (TUM fr3 sitting_*): each sways over
+  // 4-6 cm at 3-5 cm/s (shifting in a chair, leaning) instead of crossing the room; the slow
+  // motion that must not erase the static map behind them.
+  bool walkers_sitting = false;
 };
 
 // Lambertian light at p (normal n) from ambient + point lights, and from a spotlight.
@@ -129,6 +133,7 @@ class Scene {
     float speed = 1.0f;
     float offset_m = 0.0f;
     Eigen::Vector2f at(double t) const;
+    void sit(float fraction);  // see SceneOptions::walkers_sitting
   };
   struct ViewFollowing {  // see SceneOptions::walkers_follow_view
     float lag_s = 0.3f;

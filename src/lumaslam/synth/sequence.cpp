@@ -24,6 +24,7 @@ Scene buildScene(const Preset& preset, const SynthOptions& options,
   scene_options.spotlight = preset.spotlight;
   scene_options.view_origin = trajectory.viewOrigin();
   scene_options.view_direction = trajectory.viewDirection();
+  scene_options.walkers_sitting = preset.walkers_sitting;
   if (preset.walkers_follow_view)
     scene_options.walkers_follow_view = [trajectory](double t) { return trajectory.pose(t); };
   for (const auto& path : options.texture_images) {
