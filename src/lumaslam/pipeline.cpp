@@ -338,11 +338,24 @@ track::Frame Pipeline::buildStereoFrame(const SensorFrame& frame, FrameResult& r
 
   result.feature_image = images.gray;
   return withoutDynamicFeatures(frame, cv::Mat(), result, [&] {
-    auto built =
-        frame_builder_->buildStereo(frame.index, frame.timestamp, images.gray, gray_right, mask);
+    auto built = frame_builder_->buildStereo(frame.index, frame.timestamp, images.gray, gray_right,
+                                             extractionMask(mask));
     timing.features = msSince(start) - left_enhance_ms;
     return built;
   });
+}
+
+// The detector's boxes of this frame come after its features (they run side by side), so the
+// features are taken outside the last frame's dynamic mask: the feature budget goes to what
+// is likely static instead of to people whose features are dropped anyway (two people sitting
+// close to the camera took 60-70 % of it, too few were left to start a map; docs/dynamic.md).
+// `given`: a mask of the caller, kept.
+cv::Mat Pipeline::extractionMask(const cv::Mat& given) const {
+  if (previous_dynamic_mask_.empty()) return given;
+  if (given.empty()) return previous_dynamic_mask_;
+  cv::Mat both;
+  cv::bitwise_or(given, previous_dynamic_mask_, both);
+  return both;
 }
 
 void Pipeline::pushForDetection(const SensorFrame& input, const cv::Mat& detector_image) {
@@ -419,7 +432,7 @@ FrameResult Pipeline::track(const SensorFrame& sensor_input) {
     frame = withoutDynamicFeatures(input, depth_m, result, [&] {
       const auto stage = Clock::now();
       auto built = frame_builder_->build(input.index, input.timestamp, images.gray, depth_m,
-                                         input.dynamic_mask);
+                                         extractionMask(input.dynamic_mask));
       result.timing.features = msSince(stage);
       return built;
     });
@@ -446,6 +459,7 @@ FrameResult Pipeline::track(const SensorFrame& sensor_input) {
   result.timing.mapping = msSince(stage);
   result.timing.total = msSince(start);
   previous_timestamp_ = input.timestamp;
+  previous_dynamic_mask_ = result.dynamic_mask;
   return result;
 }
 

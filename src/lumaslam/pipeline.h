@@ -187,6 +187,7 @@ class Pipeline {
   track::Frame buildStereoFrame(const SensorFrame& frame, FrameResult& result);
   SE3 toCalibratedCamera(const SE3& T_w_c) const;  // identity unless rectifying
   Trajectory toCalibratedCamera(Trajectory trajectory) const;
+  cv::Mat extractionMask(const cv::Mat& given) const;
   void pushForDetection(const SensorFrame& input, const cv::Mat& detector_image);
   track::Frame withoutDynamicFeatures(const SensorFrame& input, const cv::Mat& depth_m,
                                       FrameResult& result,
@@ -209,7 +210,8 @@ class Pipeline {
   std::uint64_t vocabulary_fingerprint_ = 0;  // loop::vocabularyFingerprint, 0 without one
   bool shut_down_ = false;
   std::optional<double> previous_timestamp_;  // of the last tracked frame (any outcome)
-  bool wait_for_busy_mapper_ = true;          // TrackerParams::wait_for_busy_mapper
+  cv::Mat previous_dynamic_mask_;     // the last frame's mask from its boxes (extraction budget)
+  bool wait_for_busy_mapper_ = true;  // TrackerParams::wait_for_busy_mapper
   std::unique_ptr<track::FrameBuilder> frame_builder_;
   std::unique_ptr<mapping::LocalMapper> mapper_;
   std::unique_ptr<track::Tracker> tracker_;
