@@ -10,9 +10,11 @@
 namespace lumaslam::detect {
 
 struct PropagationParams {
-  int max_features = 30;        // good features tracked per box
-  float inner_fraction = 0.6f;  // features come from this central part of each box
-  int min_tracked = 3;          // fewer tracked features: the box stays where it was
+  int max_features = 30;         // good features tracked per box
+  float inner_fraction = 0.6f;   // features come from this central part of each box
+  int min_tracked = 3;           // fewer tracked features: the box stays where it was
+  int min_scale_tracked = 6;     // fewer tracked features: the box keeps its size
+  float max_scale_step = 1.25f;  // per frame a box grows/shrinks at most this much (1: never)
 };
 
 struct MaskParams {
