@@ -21,6 +21,7 @@ import sys
 
 ROOT = pathlib.Path(__file__).resolve().parent.parent
 PEOPLE = "data/labels/person_boxes.txt"
+NIGHT = "data/llvip/night_people_sample"  # LLVIP night street people: VOC labels, visible images
 
 # name: (preset, extra synth flags, what it shows)
 SEQUENCES = {
@@ -29,6 +30,11 @@ SEQUENCES = {
                       "walkers cut from real person photos"),
     "photo-walkers-crate": ("walking-xyz-rgbd", ["--people-images", "{people}"],
                             "photo walkers and the crate (no COCO class)"),
+    "night-people-crate": ("walking-xyz-rgbd",
+                           ["--people-images", "{night}/Annotations",
+                            "--people-image-folder", "{night}/visible/test",
+                            "--people-image-folder", "{night}/visible/train"],
+                           "walkers cut from LLVIP night street photos, and the crate"),
     "walking-rpy": ("walking-rpy-rgbd", ["--people-images", "{people}", "--moving-boxes", "0"],
                     "fast rotations, photo walkers"),
     "walking-halfsphere": ("walking-halfsphere-rgbd",
@@ -64,9 +70,9 @@ def dataset(args, name, seed):
     if not (folder / "groundtruth.txt").exists():
         if folder.exists():
             shutil.rmtree(folder)
-        people = str(args.shared / PEOPLE)
+        paths = {"people": str(args.shared / PEOPLE), "night": str(args.shared / NIGHT)}
         cmd = [args.lumaslam, "synth", folder, "--preset", preset, "--frames", str(args.frames),
-               "--seed", str(seed)] + [f.format(people=people) for f in flags]
+               "--seed", str(seed)] + [f.format(**paths) for f in flags]
         run(cmd, args.work / "synth.log")
     # YOLO knows no "box": a copy of the settings that removes people only.
     person_only = folder / "settings_person.yaml"

@@ -9,6 +9,9 @@
 #include <utility>
 #include <vector>
 
+#include <opencv2/core.hpp>
+#include <opencv2/imgcodecs.hpp>
+
 #include "test_paths.h"
 
 namespace fs = std::filesystem;
@@ -80,6 +83,53 @@ TEST(SynthCli, PeopleImagesTextureTheWalkersFromABoxList) {
                 log),
             0);
   EXPECT_NE(readText(log).find("nobody"), std::string::npos) << readText(log);
+}
+
+// Mean grey level of the walkers' own pixels (mask/, 255 = dynamic) over a synth output.
+double walkerBrightness(const fs::path& out) {
+  double sum = 0.0;
+  double pixels = 0.0;
+  for (const auto& entry : fs::directory_iterator(out / "mask")) {
+    const cv::Mat mask = cv::imread(entry.path().string(), cv::IMREAD_GRAYSCALE);
+    const cv::Mat grey =
+        cv::imread((out / "rgb" / entry.path().filename()).string(), cv::IMREAD_GRAYSCALE);
+    const double n = cv::countNonZero(mask);
+    if (n > 0) sum += cv::mean(grey, mask)[0] * n;
+    pixels += n;
+  }
+  return pixels > 0 ? sum / pixels : -1.0;
+}
+
+// LLVIP's night street people: Pascal VOC annotations, images in visible/test and visible/train.
+TEST(SynthCli, PeopleImagesFromVocAnnotationsAndFromSeveralSources) {
+  lumaslam::test::TempDir dir("synth_cli_voc_people");
+  const fs::path log = dir.path() / "log.txt";
+  const fs::path llvip = lumaslam::test::dataDir() / "llvip" / "night_people_sample";
+  const std::string night = " --people-images " + (llvip / "Annotations").string();
+  const std::string folders = " --people-image-folder " + (llvip / "visible" / "test").string() +
+                              " --people-image-folder " + (llvip / "visible" / "train").string();
+  const std::string daylight =
+      " --people-images " + (lumaslam::test::dataDir() / "labels" / "person_boxes.txt").string();
+  const std::string common = " --preset walking-xyz-rgbd --frames 3 --seed 2 --moving-boxes 0";
+  ASSERT_EQ(run("synth " + (dir.path() / "night").string() + common + night + folders, log), 0)
+      << readText(log);
+  ASSERT_EQ(run("synth " + (dir.path() / "day").string() + common + daylight, log), 0)
+      << readText(log);
+  ASSERT_EQ(
+      run("synth " + (dir.path() / "both").string() + common + daylight + night + folders, log), 0)
+      << readText(log);
+  EXPECT_NE(readText(dir.path() / "night/detections.txt").find("person"), std::string::npos);
+  EXPECT_NE(readText(dir.path() / "both/detections.txt").find("person"), std::string::npos);
+  // The walkers wear the night photos: far darker than the daylight bus/zidane people.
+  const double night_grey = walkerBrightness(dir.path() / "night");
+  const double day_grey = walkerBrightness(dir.path() / "day");
+  EXPECT_GT(night_grey, 0.0);
+  EXPECT_LT(night_grey, 0.8 * day_grey) << "night " << night_grey << ", daylight " << day_grey;
+
+  // VOC's own layout is the default: LLVIP has no JPEGImages folder, so the images are not found.
+  EXPECT_NE(run("synth " + (dir.path() / "x").string() + common + night, log), 0);
+  EXPECT_NE(readText(log).find("010005.xml: image '010005.jpg' not found"), std::string::npos)
+      << readText(log);
 }
 
 TEST(SynthCli, SyncedDepthWritesDepthAtTheColourStamps) {

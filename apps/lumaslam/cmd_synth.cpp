@@ -8,15 +8,12 @@
 #include <string>
 #include <vector>
 
-#include <opencv2/imgcodecs.hpp>
-
 #include "command_registry.h"
 #include "lumaslam/core/error.h"
-#include "lumaslam/detect/box_labels.h"
 #include "lumaslam/synth/dataset_writer.h"
-#include "lumaslam/synth/person_image.h"
 #include "lumaslam/synth/preset.h"
 #include "lumaslam/synth/sequence.h"
+#include "people_sources.h"
 #include "progress_line.h"
 
 namespace {
@@ -35,41 +32,9 @@ struct SynthCommandOptions {
   bool synced_depth = false;
   bool list = false;
   std::vector<std::filesystem::path> textures;
-  std::filesystem::path people;
+  std::vector<std::filesystem::path> people;
+  std::vector<std::filesystem::path> people_image_folders;
 };
-
-// An image named in a box list, relative to the list's folder or one of its ancestors
-// (shared/data/labels/person_boxes.txt names its images relative to shared/data).
-std::filesystem::path resolveListedImage(const std::filesystem::path& list,
-                                         const std::string& image) {
-  for (auto dir = std::filesystem::absolute(list).parent_path(); !dir.empty();
-       dir = dir.parent_path()) {
-    if (std::filesystem::exists(dir / image)) return dir / image;
-    if (dir == dir.parent_path()) break;
-  }
-  lumaslam::fail("{}: image '{}' not found next to the list or in a folder above it", list.string(),
-                 image);
-}
-
-// --people-images: a box list (*.txt, "image class x1 y1 x2 y2") whose "person" boxes are
-// cropped, or an image file / folder of images used whole.
-std::vector<lumaslam::synth::PersonImage> loadPeople(const std::filesystem::path& path) {
-  if (path.extension() != ".txt") return lumaslam::synth::loadPersonImages(path);
-  std::vector<lumaslam::synth::PersonImage> people;
-  for (const auto& [image, labels] : lumaslam::detect::readBoxList(path)) {
-    std::vector<cv::Rect> boxes;
-    for (const auto& label : labels)
-      if (label.class_name == "person") boxes.push_back(label.box);
-    if (boxes.empty()) continue;
-    const auto file = resolveListedImage(path, image);
-    const cv::Mat bgr = cv::imread(file.string(), cv::IMREAD_COLOR);
-    if (bgr.empty()) lumaslam::fail("{}: cannot read this image", file.string());
-    const auto crops = lumaslam::synth::cropPersonImages(bgr, boxes);
-    people.insert(people.end(), crops.begin(), crops.end());
-  }
-  if (people.empty()) lumaslam::fail("{}: no person box in this list", path.string());
-  return people;
-}
 
 int runSynth(const SynthCommandOptions& o) {
   using namespace lumaslam::synth;
@@ -89,7 +54,8 @@ int runSynth(const SynthCommandOptions& o) {
   options.rolling_shutter = !o.global_shutter;
   options.depth_misalignment = !o.synced_depth;
   options.texture_images = o.textures;
-  if (!o.people.empty()) options.people = loadPeople(o.people);
+  if (!o.people.empty())
+    options.people = lumaslam::cli::loadPeople(o.people, o.people_image_folders);
   std::optional<lumaslam::cli::ProgressLine> progress;
   writeSequence(o.out, o.preset, o.frames, o.seed, options, [&](int done, int total) {
     if (!progress) progress.emplace("frame", static_cast<std::size_t>(total));
@@ -124,9 +90,13 @@ const bool registered = lumaslam::cli::registerCommand(
                    "(no misregistration, no stream time offsets)");
       cmd.add_option("--texture", o->textures, "Image file(s) to use as posters in the scene");
       cmd.add_option("--people-images", o->people,
-                     "Texture the walkers from person photos: an image, a folder of person "
-                     "crops, or a box list (*.txt: image class x1 y1 x2 y2) whose person "
-                     "boxes are cropped");
+                     "Texture the walkers from person photos (repeatable, sources combined): an "
+                     "image, a folder of person crops, a box list (*.txt: image class x1 y1 x2 "
+                     "y2) or Pascal VOC annotations (*.xml or a folder of them, e.g. LLVIP's "
+                     "Annotations) whose person boxes are cut out");
+      cmd.add_option("--people-image-folder", o->people_image_folders,
+                     "Where the images of VOC annotations are (repeatable; default: the "
+                     "annotation folder's sibling JPEGImages)");
       return [o] { return runSynth(*o); };
     });
 
