@@ -20,9 +20,11 @@ build: configure
 	@cmake --build $(BUILD_DIR) -j $(JOBS)
 
 # The demo needs only the CLI: a fresh machine reaches its output without building the tests.
+# With the shared YOLO model it adds a row with YOLO in the loop (else it says how to get one).
+DEMO_MODEL ?= $(SHARED)/models/yolov5n-320.onnx
 demo: configure
 	@cmake --build $(BUILD_DIR) -j $(JOBS) --target lumaslam_cli
-	$(BUILD_DIR)/lumaslam demo --out $(BUILD_DIR)/demo
+	$(BUILD_DIR)/lumaslam demo --out $(BUILD_DIR)/demo$(if $(wildcard $(DEMO_MODEL)), --model $(DEMO_MODEL))
 
 test: build
 	@cd $(BUILD_DIR) && ctest --output-on-failure -j $(JOBS)
