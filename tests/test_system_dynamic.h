@@ -42,19 +42,22 @@ class GroundTruthBoxes {
 using FrameObserver = std::function<void(const synth::Frame&, const FrameResult&)>;
 
 // Enhancement off and local mapping in the caller's thread (repeatable) unless `options` says
-// otherwise. `extra_settings`: YAML lines appended to the generator's settings.yaml.
+// otherwise. `extra_settings`: YAML lines appended to the generator's settings.yaml. `sensor`:
+// e.g. the rgb stream alone as monocular (then Sim3 alignment); nullopt: the preset's sensor.
 inline SyntheticRun runSynthetic(const synth::SequenceRenderer& sequence, PipelineOptions options,
                                  const FrameObserver& observe = {},
-                                 const std::string& extra_settings = {}) {
+                                 const std::string& extra_settings = {},
+                                 std::optional<io::SensorType> sensor = std::nullopt) {
   if (!options.enhance_preset) options.enhance_preset = "off";
   if (!options.sequential) options.sequential = true;
-  Pipeline system(presetSettings(sequence, [&](std::string yaml) { return yaml + extra_settings; }),
-                options);
+  const auto settings = presetSettings(
+      sequence, [&](std::string yaml) { return yaml + extra_settings; }, sensor);
+  Pipeline system(settings, options);
   Trajectory ground_truth;
   SyntheticRun run;
   for (int i = 0; i < sequence.frameCount(); ++i) {
     const auto frame = sequence.render(i);
-    const auto result = system.track(sensorFrame(frame));
+    const auto result = system.track(sensorFrame(frame, settings.sensor));
     ground_truth.push_back({frame.timestamp(), frame.cam0.T_w_c});
     if (result.outcome.state == track::TrackingState::Ok) ++run.tracked;
     run.dropped_features += result.dropped_features.size();
@@ -64,7 +67,9 @@ inline SyntheticRun runSynthetic(const synth::SequenceRenderer& sequence, Pipeli
   run.frames = static_cast<std::size_t>(sequence.frameCount());
   run.keyframes = system.keyFrameCount();
   run.map_points = system.mapPointCount();
-  run.report = eval::evaluate(system.frameTrajectory(), ground_truth, eval::EvaluationOptions{});
+  eval::EvaluationOptions eval_options;
+  if (settings.sensor == io::SensorType::Monocular) eval_options.align = eval::AlignMode::Sim3;
+  run.report = eval::evaluate(system.frameTrajectory(), ground_truth, eval_options);
   spdlog::info(
       "{} (detector {}): tracked {}/{}, {} keyframes, {} points, {} features dropped, "
       "ATE rmse {:.4f} m",
