@@ -12,6 +12,7 @@
 
 #include "lumaslam/detect/box_propagation.h"
 #include "lumaslam/detect/yolo_detector.h"
+#include "test_detection_iou.h"
 #include "test_paths.h"
 
 namespace lumaslam::detect {
@@ -100,18 +101,6 @@ std::vector<cv::Mat> kittiFrames(int count) {
   return frames;
 }
 
-// Mean over directly detected boxes of the best IoU with `boxes`.
-double meanBestIou(const Detections& direct, const Detections& boxes) {
-  if (direct.empty()) return 0.0;
-  double sum = 0.0;
-  for (const auto& d : direct) {
-    float best = 0.0f;
-    for (const auto& b : boxes) best = std::max(best, intersectionOverUnion(d.box, b.box));
-    sum += best;
-  }
-  return sum / static_cast<double>(direct.size());
-}
-
 // As a detector of stride `stride`: the boxes of every stride-th frame propagated frame by
 // frame; the mean best IoU of the direct boxes with the propagated ones on the frames 3 and
 // more after a detection.
@@ -127,7 +116,7 @@ double lateIou(const std::vector<cv::Mat>& frames, const std::vector<Detections>
     }
     boxes = propagateDetections(frames[i - 1], frames[i], boxes, params);
     if (i % stride < 3) continue;
-    sum += meanBestIou(direct[i], boxes);
+    sum += test::meanBestIou(direct[i], boxes);
     ++compared;
   }
   return compared > 0 ? sum / compared : 0.0;

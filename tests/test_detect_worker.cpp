@@ -11,6 +11,7 @@
 #include "lumaslam/core/error.h"
 #include "lumaslam/detect/detection_worker.h"
 #include "lumaslam/detect/yolo_detector.h"
+#include "test_detection_iou.h"
 #include "test_paths.h"
 
 namespace lumaslam::detect {
@@ -91,18 +92,6 @@ TEST(DetectionWorker, EachResultIsThatFramesOwnDetection) {
   EXPECT_GE(with_people, 30);  // people walk through the whole clip
 }
 
-// Mean over directly detected boxes of the best IoU with `boxes`.
-double meanBestIou(const Detections& direct, const Detections& boxes) {
-  if (direct.empty()) return 0.0;
-  double sum = 0.0;
-  for (const auto& d : direct) {
-    float best = 0.0f;
-    for (const auto& b : boxes) best = std::max(best, intersectionOverUnion(d.box, b.box));
-    sum += best;
-  }
-  return sum / static_cast<double>(direct.size());
-}
-
 TEST(DetectionWorker, StridePropagatesBoxesAlongTheMotion) {
   constexpr int kFrames = 25;
   constexpr int kStride = 5;
@@ -125,8 +114,8 @@ TEST(DetectionWorker, StridePropagatesBoxesAlongTheMotion) {
     }
     if (i % kStride < 3) continue;  // compare where the people had time to move
     const auto direct = direct_detector->detect(frames[i], 0.0);
-    propagated_iou += meanBestIou(direct, result.detections);
-    stale_iou += meanBestIou(direct, last_detected);
+    propagated_iou += test::meanBestIou(direct, result.detections);
+    stale_iou += test::meanBestIou(direct, last_detected);
     ++compared;
   }
   ASSERT_GT(compared, 0);
