@@ -227,7 +227,9 @@ std::string saveMapIfAsked(Pipeline& system, const RunOptions& options) {
 nlohmann::json mapFileSummary(const RunOptions& options, const Pipeline& system,
                               std::size_t loaded_keyframes, const std::string& save_error) {
   const auto path_or_null = [](const std::optional<std::filesystem::path>& path) {
-    return path ? nlohmann::json(path->string()) : nlohmann::json(nullptr);
+    // Absolute: `lumaslam report` reads the file again from wherever it runs.
+    return path ? nlohmann::json(std::filesystem::absolute(*path).string())
+                : nlohmann::json(nullptr);
   };
   nlohmann::json result = {
       {"loaded", path_or_null(options.load_map)},
