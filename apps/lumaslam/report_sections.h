@@ -28,4 +28,20 @@ std::string trackingSection(const RunFolder& run);
 
 std::string framesSection(const SampleFrames& samples);
 
+// The run had a detector (summary "detector" name other than "none") or the motion test
+// (summary "motion_evidence" on).
+bool hadMovingThings(const nlohmann::json& summary);
+
+// Detector, motion test, boxes / dropped / moving features per frame and the medians of
+// motion_ms and detection_wait_ms from timing.csv, with a plot of the features removed per
+// frame; moving map points from the summary.
+std::string movingSection(const RunFolder& run);
+
+// The run saved a map (summary "map_file" "saved"), failed to (`save_error`) or started from one.
+bool hadMapFile(const nlohmann::json& summary);
+
+// The saved map file read again as `lumaslam map info` reads it (keyframes, points, maps,
+// settings fingerprint), or a note when it is gone or unreadable; the loaded map's counts.
+std::string mapFileSection(const nlohmann::json& summary);
+
 }  // namespace lumaslam::cli

@@ -60,6 +60,8 @@ void writeRunReport(const std::filesystem::path& run_dir, const std::filesystem:
                evaluationSection(run.summary, reevaluate(run)));
   page.section("tracking", "Tracking", trackingSection(run));
   page.section("timing", "Timing", timingSection(run));
+  if (hadMovingThings(run.summary)) page.section("moving", "Moving things", movingSection(run));
+  if (hadMapFile(run.summary)) page.section("map", "Map file", mapFileSection(run.summary));
   page.section("frames", "Sample frames", framesSection(samplesOf(run)));
   save(page, out);
 }
