@@ -3,6 +3,7 @@
 // headless Chromium without console errors; a folder without a run is a clear error.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
@@ -57,6 +58,42 @@ std::string sixDecimals(double value) {
   char text[64];
   std::snprintf(text, sizeof text, "%.6f", value);
   return text;
+}
+
+std::string threeDecimals(double value) {
+  char text[64];
+  std::snprintf(text, sizeof text, "%.3f", value);
+  return text;
+}
+
+// The numbers of timing.csv's column NAME, one per frame.
+std::vector<double> timingColumn(const std::filesystem::path& file, const std::string& name) {
+  std::ifstream in(file);
+  std::string line;
+  std::getline(in, line);
+  std::stringstream header(line);
+  std::size_t index = 0;
+  for (std::string field; std::getline(header, field, ',') && field != name;) ++index;
+  std::vector<double> values;
+  while (std::getline(in, line)) {
+    std::stringstream row(line);
+    std::string field;
+    for (std::size_t k = 0; k <= index; ++k) std::getline(row, field, ',');
+    values.push_back(std::stod(field));
+  }
+  return values;
+}
+
+double mean(const std::vector<double>& values) {
+  double sum = 0.0;
+  for (const double value : values) sum += value;
+  return sum / static_cast<double>(values.size());
+}
+
+double median(std::vector<double> values) {
+  std::sort(values.begin(), values.end());
+  const std::size_t middle = values.size() / 2;
+  return values.size() % 2 ? values[middle] : 0.5 * (values[middle - 1] + values[middle]);
 }
 
 std::vector<unsigned char> decodeBase64(const std::string& text) {
@@ -126,13 +163,16 @@ TEST_F(CliReport, RunWritesOneSelfContainedPage) {
   // The only http:// is the SVG namespace name (never fetched).
   EXPECT_EQ(occurrences(html, "http://"),
             occurrences(html, "xmlns=\"http://www.w3.org/2000/svg\""));
-  EXPECT_EQ(occurrences(html, "<svg"), 4U);  // trajectory views, ATE, timeline, timing
+  // trajectory views, ATE, timeline, timing, features removed (the motion test is on)
+  EXPECT_EQ(occurrences(html, "<svg"), 5U);
   EXPECT_EQ(html.find("https://"), std::string::npos);
-  for (const char* section : {"id=\"run\"", "id=\"evaluation\"", "id=\"tracking\"", "id=\"timing\"",
-                              "id=\"frames\"", "id=\"trajectory-views\"", "id=\"ate-over-time\"",
-                              "id=\"timing-plot\"", "id=\"tracking-timeline\""}) {
+  for (const char* section :
+       {"id=\"run\"", "id=\"evaluation\"", "id=\"tracking\"", "id=\"timing\"", "id=\"frames\"",
+        "id=\"trajectory-views\"", "id=\"ate-over-time\"", "id=\"timing-plot\"",
+        "id=\"tracking-timeline\"", "id=\"moving\"", "id=\"moving-plot\""}) {
     EXPECT_NE(html.find(section), std::string::npos) << section;
   }
+  EXPECT_EQ(html.find("id=\"map\""), std::string::npos) << "no map saved, no map section";
   EXPECT_EQ(html.find("class=\"note\""), std::string::npos) << "a section says something failed";
 }
 
@@ -243,6 +283,112 @@ TEST_F(CliReport, ARunWithSeveralMapsShowsTheMapOfEachFrame) {
   EXPECT_NE(html.find(">map 3: 20<"), std::string::npos);
 }
 
+// A synthetic walking run with the generator's boxes and the motion test, saving a map: the
+// "Moving things" section's numbers are timing.csv's means and medians and summary.json's,
+// and the "Map file" section shows what `lumaslam map info` reads from the file.
+class CliReportMoving : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    dir_ = std::make_unique<TempDir>("cli_report_moving");
+    const auto synth =
+        runCli("synth " + data().string() + " --preset walking-xyz-rgbd --frames 40 --seed 5");
+    ASSERT_EQ(synth.exit_code, 0) << synth.output;
+    const auto run = runCli("run --dataset tum:" + data().string() + " --detector boxes:" +
+                            (data() / "detections.txt").string() + " --sequential --save-map " +
+                            map().string() + " --report --out " + out().string());
+    ASSERT_EQ(run.exit_code, 0) << run.output;
+  }
+  static void TearDownTestSuite() { dir_.reset(); }
+
+  static std::filesystem::path data() { return dir_->path() / "data"; }
+  static std::filesystem::path out() { return dir_->path() / "out"; }
+  static std::filesystem::path map() { return dir_->path() / "walking.map"; }
+
+  static std::unique_ptr<TempDir> dir_;
+};
+
+std::unique_ptr<TempDir> CliReportMoving::dir_;
+
+TEST_F(CliReportMoving, MovingThingsAreTimingsMeansAndTheSummarys) {
+  const std::string html = readTextFile(out() / "report.html");
+  const auto summary = readRunSummary(out());
+  const auto timing = out() / "timing.csv";
+  EXPECT_NE(html.find("id=\"moving-plot\""), std::string::npos);
+  EXPECT_EQ(cellText(html, "moving.detector"), summary["detector"]["name"].get<std::string>());
+  EXPECT_EQ(cellText(html, "moving.motion_test"), "on");
+  const double boxes = mean(timingColumn(timing, "boxes"));
+  const double dropped = mean(timingColumn(timing, "dropped_features"));
+  const double moving = mean(timingColumn(timing, "moving_features"));
+  EXPECT_GT(boxes, 0.0);
+  EXPECT_GT(dropped, 0.0);
+  EXPECT_EQ(cellText(html, "moving.boxes_per_frame"), threeDecimals(boxes));
+  EXPECT_EQ(cellText(html, "moving.dropped_per_frame"), threeDecimals(dropped));
+  EXPECT_EQ(cellText(html, "moving.moving_per_frame"), threeDecimals(moving));
+  EXPECT_EQ(cellText(html, "moving.dropped_per_frame"),
+            threeDecimals(summary["detector"]["dropped_features_per_frame"].get<double>()));
+  EXPECT_EQ(cellText(html, "moving.moving_per_frame"),
+            threeDecimals(summary["motion_evidence"]["moving_features_per_frame"].get<double>()));
+  EXPECT_EQ(cellText(html, "motion_evidence.moving_map_points"),
+            std::to_string(summary["motion_evidence"]["moving_map_points"].get<int>()));
+  EXPECT_EQ(cellText(html, "moving.motion_ms.median"),
+            threeDecimals(median(timingColumn(timing, "motion_ms"))));
+  EXPECT_EQ(cellText(html, "moving.detection_wait_ms.median"),
+            threeDecimals(median(timingColumn(timing, "detection_wait_ms"))));
+}
+
+// The number after "NAME " on its own line of `lumaslam map info`'s output.
+std::string infoLine(const std::string& output, const std::string& name) {
+  const auto at = output.find("\n" + name + " ");
+  if (at == std::string::npos) return {};
+  const auto begin = at + name.size() + 2;
+  return output.substr(begin, output.find('\n', begin) - begin);
+}
+
+TEST_F(CliReportMoving, MapFileIsWhatMapInfoReads) {
+  const std::string html = readTextFile(out() / "report.html");
+  const auto info = runCli("map info " + map().string());
+  ASSERT_EQ(info.exit_code, 0) << info.output;
+  const std::string keyframes = infoLine(info.output, "keyframes");
+  ASSERT_FALSE(keyframes.empty()) << info.output;
+  EXPECT_EQ(cellText(html, "map.keyframes"), keyframes);
+  EXPECT_EQ(cellText(html, "map.points"), infoLine(info.output, "points"));
+  EXPECT_EQ(cellText(html, "map.maps"), infoLine(info.output, "maps"));
+  EXPECT_EQ(cellText(html, "map.sensor"), infoLine(info.output, "sensor") + " 640x480");
+  EXPECT_NE(html.find(map().string()), std::string::npos);
+  EXPECT_EQ(html.find("class=\"note\""), std::string::npos) << "a section says something failed";
+}
+
+TEST_F(CliReportMoving, AGoneMapFileIsSaid) {
+  const auto copy = dir_->path() / "map_gone";
+  std::filesystem::create_directories(copy);
+  for (const char* name : {"trajectory.txt", "timing.csv"}) {
+    std::filesystem::copy_file(out() / name, copy / name);
+  }
+  auto summary = readRunSummary(out());
+  summary["map_file"]["saved"] = (dir_->path() / "gone.map").string();
+  std::ofstream(copy / "summary.json") << summary.dump(2);
+  const auto report = runCli("report " + copy.string());
+  ASSERT_EQ(report.exit_code, 0) << report.output;
+  const std::string html = readTextFile(copy / "report.html");
+  EXPECT_NE(html.find("id=\"map\""), std::string::npos);
+  EXPECT_NE(html.find("The map file cannot be read now"), std::string::npos);
+  EXPECT_NE(html.find("gone.map"), std::string::npos);
+  EXPECT_TRUE(cellText(html, "map.keyframes").empty());
+}
+
+// Neither a detector nor the motion test, no map saved: neither section.
+TEST_F(CliReportMoving, ARunWithoutDetectorOrMotionTestHasNoMovingSection) {
+  const auto plain = dir_->path() / "plain";
+  const auto run = runCli("run --dataset tum:" + data().string() +
+                          " --no-motion-evidence --sequential --report --out " + plain.string());
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  const std::string html = readTextFile(plain / "report.html");
+  EXPECT_NE(html.find("id=\"timing\""), std::string::npos);
+  EXPECT_EQ(html.find("id=\"moving\""), std::string::npos);
+  EXPECT_EQ(html.find("id=\"map\""), std::string::npos);
+  EXPECT_TRUE(cellText(html, "moving.dropped_per_frame").empty());
+}
+
 TEST(CliReportErrors, AFolderWithoutARunIsAClearError) {
   TempDir dir("cli_report_errors");
   const auto missing = runCli("report " + (dir.path() / "nothing").string());
@@ -296,8 +442,8 @@ TEST_F(CliReport, OpensInHeadlessChromiumWithoutConsoleErrors) {
   const auto browser = openInChromium(out() / "report.html", dir_->path());
   ASSERT_EQ(browser.exit_code, 0);
   EXPECT_TRUE(browser.console.empty()) << browser.console.front();
-  for (const char* element :
-       {"id=\"evaluation\"", "data-key=\"ate.rmse\"", "id=\"frames\"", "<svg", "<img"}) {
+  for (const char* element : {"id=\"evaluation\"", "data-key=\"ate.rmse\"", "id=\"moving\"",
+                              "id=\"frames\"", "<svg", "<img"}) {
     EXPECT_NE(browser.dom.find(element), std::string::npos) << element;
   }
 }
