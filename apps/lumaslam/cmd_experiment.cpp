@@ -2,6 +2,7 @@
 // into DIR/runs/, resumable, and the tables of the results (docs/experiments.md). With
 // `--emit parallel|slurm` the runs become jobs for a scheduler instead, and
 // `lumaslam experiment collect DIR` tabulates what they wrote.
+#include <algorithm>
 #include <cstdio>
 #include <memory>
 
@@ -10,6 +11,7 @@
 #include "command_registry.h"
 #include "experiment_cells.h"
 #include "experiment_data.h"
+#include "experiment_external.h"
 #include "experiment_jobs.h"
 #include "experiment_plan.h"
 #include "experiment_report.h"
@@ -25,7 +27,8 @@ namespace {
 struct ExperimentOptions {
   std::filesystem::path plan;
   std::filesystem::path out;
-  std::string emit;               // "", "parallel" or "slurm"
+  std::string emit;  // "", "parallel" or "slurm"
+  bool dry_run = false;
   std::filesystem::path collect;  // DIR of `experiment collect DIR`
   CLI::App* collect_cmd = nullptr;
 };
@@ -53,11 +56,32 @@ void printHowToRun(const std::filesystem::path& out, const std::string& emit, in
       jobs, runs, (out / "jobs.txt").string().c_str(), run.c_str(), collect.c_str());
 }
 
+// The runs that are SLAM runs (external trajectories are evaluated, not run).
+std::size_t slamRuns(const std::vector<ExperimentRun>& runs) {
+  return std::count_if(runs.begin(), runs.end(),
+                       [](const ExperimentRun& r) { return !r.external; });
+}
+
 int emitJobs(const std::vector<ExperimentRun>& runs, const std::filesystem::path& out,
              const std::string& emit) {
   const int jobs = writeJobs(runs, out);
   if (emit == "slurm") writeSlurmScript(out, jobs);
-  printHowToRun(out, emit, jobs, runs.size());
+  printHowToRun(out, emit, jobs, slamRuns(runs));
+  return 0;
+}
+
+// --dry-run: the plan checked and the job lines --emit would write, on stdout; nothing is
+// generated, evaluated or written.
+int printDryRun(Plan& plan, const std::filesystem::path& out) {
+  pointAtSynthData(plan, out / "data");
+  const auto runs = experimentRuns(plan, out / "runs");
+  const auto lines = jobLines(runs);
+  for (const auto& line : lines) std::printf("%s\n", line.c_str());
+  std::fprintf(stderr,
+               "experiment: %s: %zu datasets, %zu configurations, %zu runs (%zu to do), %zu "
+               "external trajectories\n",
+               plan.file.string().c_str(), plan.datasets.size(), plan.configs.size(),
+               slamRuns(runs), lines.size(), runs.size() - slamRuns(runs));
   return 0;
 }
 
@@ -66,8 +90,10 @@ int runExperiment(const ExperimentOptions& options) {
   const auto plan_file = std::filesystem::absolute(options.plan);
   const auto out = std::filesystem::absolute(options.out);
   Plan plan = readPlan(plan_file);
+  if (options.dry_run) return printDryRun(plan, out);
   io::requireWritableFolder(out);
   prepareSynthData(plan, out / "data");
+  evaluateExternals(plan, out / "runs");
   const auto runs = experimentRuns(plan, out / "runs");
   writeRunList(plan, runs, out);
   if (!options.emit.empty()) return emitJobs(runs, out, options.emit);
@@ -94,8 +120,8 @@ int collectExperiment(const std::filesystem::path& dir) {
 
 int runCommand(const ExperimentOptions& options) {
   if (options.collect_cmd->parsed()) {
-    if (!options.plan.empty() || !options.out.empty() || !options.emit.empty()) {
-      fail("experiment collect DIR takes no PLAN, --out or --emit");
+    if (!options.plan.empty() || !options.out.empty() || !options.emit.empty() || options.dry_run) {
+      fail("experiment collect DIR takes no PLAN, --out, --emit or --dry-run");
     }
     return collectExperiment(options.collect);
   }
@@ -132,6 +158,9 @@ const bool registered = registerCommand(
                      "Run nothing: write DIR/jobs.txt, one `lumaslam run` line per run not yet "
                      "complete, for GNU parallel; slurm: also DIR/jobs.slurm, an array job")
           ->check(CLI::IsMember({"parallel", "slurm"}));
+      cmd.add_flag("--dry-run", options->dry_run,
+                   "Check the plan and print the job lines --emit would write (one per run not "
+                   "yet complete); generate, run and write nothing");
       addCollect(cmd, *options);
       return [options] { return runCommand(*options); };
     });

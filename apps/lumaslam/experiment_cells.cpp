@@ -35,6 +35,18 @@ RunOptions runOptions(const PlanDataset& dataset, const PlanConfig& config) {
   return o;
 }
 
+void appendExternalRuns(const Plan& plan, const std::string& dataset,
+                        const std::filesystem::path& runs_dir, std::vector<ExperimentRun>& runs) {
+  for (const auto& external : plan.externals) {
+    if (external.dataset != dataset) continue;
+    for (int k = 1; k <= static_cast<int>(external.trajectories.size()); ++k) {
+      ExperimentRun run{dataset, external.name, k, {}, true};
+      run.options.out = runFolder(runs_dir, dataset, external.name, k);
+      runs.push_back(std::move(run));
+    }
+  }
+}
+
 bool stoppedBySignal(int exit_code) {
   return exit_code > 128;
 }
@@ -56,6 +68,7 @@ std::vector<ExperimentRun> experimentRuns(const Plan& plan, const std::filesyste
         runs.push_back(std::move(run));
       }
     }
+    appendExternalRuns(plan, dataset.name, runs_dir, runs);
   }
   return runs;
 }
@@ -71,14 +84,15 @@ RunsOutcome runMissing(const std::vector<ExperimentRun>& runs) {
   RunsOutcome outcome;
   std::vector<const ExperimentRun*> missing;
   for (const auto& run : runs) {
+    if (run.external) continue;
     if (isComplete(run.options.out)) {
       ++outcome.kept;
     } else {
       missing.push_back(&run);
     }
   }
-  spdlog::info("experiment: {} runs, {} complete from before, {} to run", runs.size(), outcome.kept,
-               missing.size());
+  spdlog::info("experiment: {} runs, {} complete from before, {} to run",
+               outcome.kept + missing.size(), outcome.kept, missing.size());
   if (missing.empty()) spdlog::info("experiment: every run is complete; no SLAM work to do");
   for (const ExperimentRun* run : missing) {
     spdlog::info("experiment: run {}/{} -> {}", outcome.done + 1, missing.size(),

@@ -16,13 +16,15 @@ struct ExperimentRun {
   std::string dataset;
   std::string config;
   int run = 1;
-  RunOptions options;  // options.out is the run folder
+  RunOptions options;     // options.out is the run folder
+  bool external = false;  // an `external:` trajectory: evaluated, never run (no job)
 };
 
 // DIR/runs/<dataset>/<config>/run_<k>/
 std::filesystem::path runFolder(const std::filesystem::path& runs_dir, const std::string& dataset,
                                 const std::string& config, int run);
 
+// Per dataset: its configurations' runs, then its external trajectories (external = true).
 std::vector<ExperimentRun> experimentRuns(const Plan& plan, const std::filesystem::path& runs_dir);
 
 // True when the run folder holds a summary.json with status "complete".
@@ -35,7 +37,8 @@ struct RunsOutcome {
   int exit_code = 0;  // non-zero if any run failed; 128 + signal when stopped by one
 };
 
-// Runs every run that is not complete; stops at the first run stopped by a signal.
+// Runs every run that is not complete (external ones are not runs); stops at the first run stopped
+// by a signal.
 RunsOutcome runMissing(const std::vector<ExperimentRun>& runs);
 
 }  // namespace lumaslam::cli

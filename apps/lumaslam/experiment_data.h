@@ -7,6 +7,9 @@
 
 namespace lumaslam::cli {
 
+// Points each synth dataset's spec at its folder under data_dir, generating nothing.
+void pointAtSynthData(Plan& plan, const std::filesystem::path& data_dir);
+
 // Generates what is missing and points each synth dataset's spec at its folder.
 void prepareSynthData(Plan& plan, const std::filesystem::path& data_dir);
 

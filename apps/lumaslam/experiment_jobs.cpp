@@ -8,21 +8,26 @@
 
 namespace lumaslam::cli {
 
-int writeJobs(const std::vector<ExperimentRun>& runs, const std::filesystem::path& dir) {
-  io::OutputFile out(dir / "jobs.txt");
-  int jobs = 0;
+std::vector<std::string> jobLines(const std::vector<ExperimentRun>& runs) {
+  std::vector<std::string> lines;
   for (const auto& run : runs) {
-    if (isComplete(run.options.out)) continue;
+    if (run.external || isComplete(run.options.out)) continue;
     const std::string line = runCommandLine(run.options);
     if (line.find('\n') != std::string::npos) {
       fail("{}: a path or value with a line break cannot be one line of jobs.txt: {}",
            run.options.out.string(), line);
     }
-    out.stream() << line << '\n';
-    ++jobs;
+    lines.push_back(line);
   }
+  return lines;
+}
+
+int writeJobs(const std::vector<ExperimentRun>& runs, const std::filesystem::path& dir) {
+  const auto lines = jobLines(runs);
+  io::OutputFile out(dir / "jobs.txt");
+  for (const auto& line : lines) out.stream() << line << '\n';
   out.commit();
-  return jobs;
+  return static_cast<int>(lines.size());
 }
 
 void writeSlurmScript(const std::filesystem::path& dir, int jobs) {

@@ -3,11 +3,15 @@
 // that are not complete as jobs for GNU parallel or a Slurm array, one `lumaslam run` command
 // line each; the scheduler runs them, `lumaslam experiment collect DIR` tabulates.
 #include <filesystem>
+#include <string>
 #include <vector>
 
 #include "experiment_cells.h"
 
 namespace lumaslam::cli {
+
+// One `lumaslam run` command line per run that is not complete (external rows are no jobs).
+std::vector<std::string> jobLines(const std::vector<ExperimentRun>& runs);
 
 // Writes DIR/jobs.txt, one line per run that is not complete (empty when every run is);
 // returns the number of lines.

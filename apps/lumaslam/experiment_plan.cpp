@@ -11,6 +11,7 @@
 #include "lumaslam/core/error.h"
 #include "lumaslam/core/read_file.h"
 #include "lumaslam/core/settings_lines.h"
+#include "lumaslam/io/trajectory_io.h"
 #include "lumaslam/synth/preset.h"
 
 namespace lumaslam::cli {
@@ -205,6 +206,17 @@ void readDataset(const Section& s, std::vector<PlanDataset>& out) {
   out.push_back(std::move(d));
 }
 
+// "yolo:rel/model.onnx" -> "yolo:PLAN_FOLDER/rel/model.onnx"; likewise boxes:FILE unless it
+// names the run's dataset folder ({dataset}). "none" and absolute paths are kept.
+std::string resolveDetector(const Section& s, const std::string& detector) {
+  const auto colon = detector.find(':');
+  if (colon == std::string::npos || detector.find("{dataset}") != std::string::npos) {
+    return detector;
+  }
+  return detector.substr(0, colon + 1) +
+         fromPlanFolder(s.plan, detector.substr(colon + 1)).string();
+}
+
 PlanConfig readConfig(const Section& s) {
   requireKnownKeys(s, {"name", "enhance", "detector", "vocabulary", "sequential", "loop_closing",
                        "motion_evidence"});
@@ -212,7 +224,7 @@ PlanConfig readConfig(const Section& s) {
   c.name = requiredString(s, "name");
   requireFolderName(s, "name", c.name);
   c.enhance = findString(s, "enhance");
-  c.detector = findString(s, "detector");
+  if (const auto detector = findString(s, "detector")) c.detector = resolveDetector(s, *detector);
   if (const auto vocabulary = findString(s, "vocabulary")) {
     c.vocabulary = *vocabulary == "none" ? std::filesystem::path(*vocabulary)
                                          : fromPlanFolder(s.plan, *vocabulary);
@@ -221,6 +233,97 @@ PlanConfig readConfig(const Section& s) {
   c.loop_closing = boolOr(s, "loop_closing", true);
   c.motion_evidence = boolOr(s, "motion_evidence", true);
   return c;
+}
+
+// `trajectory: FILE` or `trajectory: [FILE, ...]` (one run each), from the plan's folder.
+std::vector<std::filesystem::path> trajectoriesOf(const Section& s) {
+  const cv::FileNode n = s["trajectory"];
+  std::vector<std::string> names;
+  if (n.isSeq()) {
+    for (const auto& item : n) {
+      if (!item.isString()) s.invalid("trajectory", "expected a file or a list of files");
+      names.push_back(static_cast<std::string>(item));
+    }
+    if (names.empty()) s.invalid("trajectory", "empty list");
+  } else {
+    names.push_back(requiredString(s, "trajectory"));
+  }
+  std::vector<std::filesystem::path> files;
+  for (const auto& name : names) files.push_back(fromPlanFolder(s.plan, name));
+  return files;
+}
+
+// Reads each file now, so that a missing or malformed one is an error before any run.
+void requireReadableTrajectories(const Section& s, const PlanExternal& e) {
+  try {
+    const auto format = io::parseTrajectoryFormat(e.format);
+    for (const auto& file : e.trajectories) {
+      if (!std::filesystem::is_regular_file(file)) fail("{} not found", file.string());
+      io::readTrajectory(file, format, e.times);
+    }
+  } catch (const Error& error) {
+    s.invalid("trajectory", error.what());
+  }
+}
+
+void requireKnownDataset(const Section& s, const std::string& dataset) {
+  std::vector<std::string> names;
+  for (const auto& d : s.plan.datasets) names.push_back(d.name);
+  if (std::find(names.begin(), names.end(), dataset) == names.end()) {
+    s.invalid("dataset", fmt::format("'{}' is not a dataset of the plan (datasets: {})", dataset,
+                                     fmt::join(names, ", ")));
+  }
+}
+
+void requireNotAConfiguration(const Section& s, const std::string& name) {
+  for (const auto& c : s.plan.configs) {
+    if (c.name == name) s.invalid("name", fmt::format("'{}' is a configuration's name", name));
+  }
+}
+
+PlanExternal readExternal(const Section& s) {
+  requireKnownKeys(s, {"name", "dataset", "trajectory", "format", "times"});
+  PlanExternal e;
+  e.key = s.path;
+  e.name = requiredString(s, "name");
+  requireFolderName(s, "name", e.name);
+  requireNotAConfiguration(s, e.name);
+  e.dataset = requiredString(s, "dataset");
+  requireKnownDataset(s, e.dataset);
+  e.format = findString(s, "format").value_or("auto");
+  if (e.format != "auto" && e.format != "tum" && e.format != "euroc" && e.format != "kitti") {
+    s.invalid("format", fmt::format("'{}': expected auto, tum, euroc or kitti", e.format));
+  }
+  if (const auto times = findString(s, "times")) {
+    e.times = fromPlanFolder(s.plan, *times);
+    if (!std::filesystem::is_regular_file(e.times)) {
+      s.invalid("times", fmt::format("{} not found", e.times.string()));
+    }
+  }
+  e.trajectories = trajectoriesOf(s);
+  requireReadableTrajectories(s, e);
+  return e;
+}
+
+// Each external name appears once per dataset.
+void requireUniqueExternals(const Plan& plan) {
+  std::set<std::pair<std::string, std::string>> seen;
+  for (const auto& e : plan.externals) {
+    if (!seen.insert({e.name, e.dataset}).second) {
+      fail("{}: external: '{}' is given twice for dataset '{}'", plan.file.string(), e.name,
+           e.dataset);
+    }
+  }
+}
+
+void readExternals(const Section& top, Plan& plan) {
+  const cv::FileNode externals = top["external"];
+  if (externals.empty()) return;
+  if (!externals.isSeq()) top.invalid("external", "expected a list");
+  for (int i = 0; i < static_cast<int>(externals.size()); ++i) {
+    plan.externals.push_back(readExternal({plan, externals[i], fmt::format("external[{}]", i)}));
+  }
+  requireUniqueExternals(plan);
 }
 
 cv::FileNode requiredList(const Section& top, const std::string& name) {
@@ -240,16 +343,17 @@ void requireUniqueNames(const Plan& plan, const std::vector<T>& items, const cha
   }
 }
 
-// `baseline: NAME` names one of the configurations; without it, the first one.
+// `baseline: NAME` names one of the configurations or external names; without it, the first
+// configuration.
 std::string baselineOf(const Section& top) {
   const auto name = findString(top, "baseline");
   if (!name) return top.plan.configs.front().name;
-  const auto& configs = top.plan.configs;
-  const bool known = std::any_of(configs.begin(), configs.end(),
-                                 [&](const PlanConfig& c) { return c.name == *name; });
-  if (!known) {
-    std::vector<std::string> names;
-    for (const auto& c : configs) names.push_back(c.name);
+  std::vector<std::string> names;
+  for (const auto& c : top.plan.configs) names.push_back(c.name);
+  for (const auto& e : top.plan.externals) {
+    if (std::find(names.begin(), names.end(), e.name) == names.end()) names.push_back(e.name);
+  }
+  if (std::find(names.begin(), names.end(), *name) == names.end()) {
     top.invalid("baseline", fmt::format("'{}' is not a configuration (configurations: {})", *name,
                                         fmt::join(names, ", ")));
   }
@@ -263,7 +367,7 @@ Plan readPlan(const std::filesystem::path& file) {
   plan.file = file;
   const cv::FileStorage storage = openPlan(file);
   const Section top{plan, storage.root(), ""};
-  requireKnownKeys(top, {"runs", "datasets", "configurations", "baseline"});
+  requireKnownKeys(top, {"runs", "datasets", "configurations", "external", "baseline"});
   plan.runs = findInt(top, "runs", 1).value_or(1);
   const cv::FileNode datasets = requiredList(top, "datasets");
   for (int i = 0; i < static_cast<int>(datasets.size()); ++i) {
@@ -275,6 +379,7 @@ Plan readPlan(const std::filesystem::path& file) {
   }
   requireUniqueNames(plan, plan.datasets, "datasets");
   requireUniqueNames(plan, plan.configs, "configurations");
+  readExternals(top, plan);
   plan.baseline = baselineOf(top);
   return plan;
 }

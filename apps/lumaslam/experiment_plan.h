@@ -36,13 +36,25 @@ struct PlanConfig {
   bool motion_evidence = true;
 };
 
+// `external:` entries: another system's trajectories of one plan dataset, evaluated against its
+// ground truth as rows of the tables (configuration `name`, one run per file).
+struct PlanExternal {
+  std::string key;      // "external[i]", for errors
+  std::string name;     // shown as a configuration; folder under DIR/runs/<dataset>/
+  std::string dataset;  // a dataset name of the plan (synth: NAME-sSEED)
+  std::vector<std::filesystem::path> trajectories;  // run k = trajectories[k - 1]
+  std::string format = "auto";                      // as `lumaslam eval --est-format`
+  std::filesystem::path times;                      // KITTI timestamps (times.txt), optional
+};
+
 struct Plan {
   std::filesystem::path file;
   int runs = 1;
   std::vector<PlanDataset> datasets;  // synth seeds already expanded, one entry each
   std::vector<PlanConfig> configs;
-  std::string baseline;  // `baseline: NAME`, the configuration report.html compares with;
-                         // default: the first configuration
+  std::vector<PlanExternal> externals;
+  std::string baseline;  // `baseline: NAME`, the configuration (or external name)
+                         // report.html compares with; default: the first configuration
 };
 
 // Throws Error naming the file and key for anything the plan gets wrong. Relative paths in the

@@ -17,6 +17,7 @@ ExperimentRun runOf(const nlohmann::json& entry, const std::filesystem::path& di
   run.dataset = entry.at("dataset").get<std::string>();
   run.config = entry.at("config").get<std::string>();
   run.run = entry.at("run").get<int>();
+  run.external = entry.value("external", false);
   run.options.out = runFolder(dir / "runs", run.dataset, run.config, run.run);
   return run;
 }
@@ -27,7 +28,9 @@ void writeRunList(const Plan& plan, const std::vector<ExperimentRun>& runs,
                   const std::filesystem::path& dir) {
   nlohmann::json list = nlohmann::json::array();
   for (const auto& run : runs) {
-    list.push_back({{"dataset", run.dataset}, {"config", run.config}, {"run", run.run}});
+    nlohmann::json entry{{"dataset", run.dataset}, {"config", run.config}, {"run", run.run}};
+    if (run.external) entry["external"] = true;
+    list.push_back(std::move(entry));
   }
   io::OutputFile out(dir / kRunList);
   const nlohmann::json json{
