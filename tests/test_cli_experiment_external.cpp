@@ -190,6 +190,43 @@ TEST_F(CliExperimentExternal, EmitWritesNoJobForItAndCollectKeepsIt) {
   EXPECT_NEAR(std::stod(rowOf(rows, "orb", "2").at("ate_rmse")), 0.02, 1e-9);
 }
 
+// As `lumaslam run`: Sim3 for a monocular dataset (settings say so), so the ground truth at
+// twice the scale has ATE 0 there and not with SE3 on the same images as RGB-D.
+TEST_F(CliExperimentExternal, AMonocularDatasetIsAlignedWithSim3) {
+  std::ofstream scaled(dir_->path() / "scaled.txt");
+  scaled.precision(17);
+  for (const auto& pose : tumLines(dir_->path() / "truth" / "groundtruth.txt")) {
+    scaled << pose[0];
+    for (int k = 1; k < 4; ++k) scaled << ' ' << 2.0 * std::stod(pose[k]);
+    for (int k = 4; k < 8; ++k) scaled << ' ' << pose[k];
+    scaled << '\n';
+  }
+  scaled.close();
+  const auto configs = lumaslam::test::sourceDir() / "configs";
+  for (const auto& [kind, settings] :
+       {std::pair{"tum-mono", "tum_fr3_mono.yaml"}, std::pair{"tum", "tum_fr3_rgbd.yaml"}}) {
+    const auto plan = writeFile(dir_->path() / "scaled.yaml",
+                                std::string("datasets:\n  - name: d\n    spec: \"") + kind +
+                                    ":truth\"\n    settings: " + (configs / settings).string() +
+                                    "\nconfigurations:\n  - name: a\nexternal:\n  - name: b\n"
+                                    "    dataset: d\n    trajectory: scaled.txt\n");
+    const auto out = dir_->path() / (std::string("scaled_") + kind);
+    const auto emit =
+        runCli("experiment " + plan.string() + " --out " + out.string() + " --emit parallel");
+    ASSERT_EQ(emit.exit_code, 0) << emit.output;
+    const auto summary = lumaslam::test::readRunSummary(out / "runs" / "d" / "b" / "run_1");
+    const std::string mode = summary["evaluation"]["alignment"]["mode"];
+    const double rmse = summary["evaluation"]["ate"]["rmse"];
+    if (std::string(kind) == "tum-mono") {
+      EXPECT_EQ(mode, "sim3");
+      EXPECT_LT(rmse, 1e-9);
+    } else {
+      EXPECT_EQ(mode, "se3");
+      EXPECT_GT(rmse, 0.01);
+    }
+  }
+}
+
 // `plan.yaml` with `from` replaced by `to`, run: the error output, and that nothing ran.
 std::string planError(const fs::path& dir, const std::string& from, const std::string& to) {
   std::string text = kPlan;
