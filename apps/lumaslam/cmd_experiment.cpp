@@ -17,6 +17,7 @@
 #include "experiment_report.h"
 #include "experiment_results.h"
 #include "experiment_run_list.h"
+#include "experiment_settings.h"
 #include "lumaslam/core/error.h"
 #include "lumaslam/io/output_file.h"
 #include "run_command_line.h"
@@ -93,6 +94,7 @@ int runExperiment(const ExperimentOptions& options) {
   if (options.dry_run) return printDryRun(plan, out);
   io::requireWritableFolder(out);
   prepareSynthData(plan, out / "data");
+  writeClassSettings(plan, out);
   evaluateExternals(plan, out / "runs");
   const auto runs = experimentRuns(plan, out / "runs");
   writeRunList(plan, runs, out);

@@ -6,6 +6,7 @@
 #include <spdlog/spdlog.h>
 #include <nlohmann/json.hpp>
 
+#include "experiment_settings.h"
 #include "lumaslam/core/error.h"
 
 namespace lumaslam::cli {
@@ -18,10 +19,12 @@ std::string replaceAll(std::string text, const std::string& from, const std::str
   return text;
 }
 
-RunOptions runOptions(const PlanDataset& dataset, const PlanConfig& config) {
+RunOptions runOptions(const PlanDataset& dataset, const PlanConfig& config,
+                      const std::filesystem::path& dir) {
   RunOptions o;
   o.dataset = dataset.spec;
   o.settings = dataset.settings;
+  if (config.detector_classes) o.settings = classSettingsFile(dir, dataset.name, config.name);
   o.max_frames = dataset.max_frames;
   o.enhance_preset = config.enhance;
   if (config.detector) {
@@ -63,7 +66,8 @@ std::vector<ExperimentRun> experimentRuns(const Plan& plan, const std::filesyste
   for (const auto& dataset : plan.datasets) {
     for (const auto& config : plan.configs) {
       for (int k = 1; k <= plan.runs; ++k) {
-        ExperimentRun run{dataset.name, config.name, k, runOptions(dataset, config)};
+        ExperimentRun run{dataset.name, config.name, k,
+                          runOptions(dataset, config, runs_dir.parent_path())};
         run.options.out = runFolder(runs_dir, dataset.name, config.name, k);
         runs.push_back(std::move(run));
       }

@@ -218,13 +218,17 @@ std::string resolveDetector(const Section& s, const std::string& detector) {
 }
 
 PlanConfig readConfig(const Section& s) {
-  requireKnownKeys(s, {"name", "enhance", "detector", "vocabulary", "sequential", "loop_closing",
-                       "motion_evidence"});
+  requireKnownKeys(s, {"name", "enhance", "detector", "detector_classes", "vocabulary",
+                       "sequential", "loop_closing", "motion_evidence"});
   PlanConfig c;
   c.name = requiredString(s, "name");
   requireFolderName(s, "name", c.name);
   c.enhance = findString(s, "enhance");
   if (const auto detector = findString(s, "detector")) c.detector = resolveDetector(s, *detector);
+  c.detector_classes = findString(s, "detector_classes");
+  if (c.detector_classes && c.detector_classes->empty()) {
+    s.invalid("detector_classes", "empty (expected class names, e.g. \"person\")");
+  }
   if (const auto vocabulary = findString(s, "vocabulary")) {
     c.vocabulary = *vocabulary == "none" ? std::filesystem::path(*vocabulary)
                                          : fromPlanFolder(s.plan, *vocabulary);

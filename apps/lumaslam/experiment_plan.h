@@ -30,6 +30,8 @@ struct PlanConfig {
   std::string name;  // folder under DIR/runs/<dataset>/
   std::optional<std::string> enhance;
   std::optional<std::string> detector;  // "{dataset}" is replaced by the dataset's folder
+  // Detector.classes for this configuration's runs, e.g. "person" (a copy of the settings).
+  std::optional<std::string> detector_classes;
   std::optional<std::filesystem::path> vocabulary;
   bool sequential = false;
   bool loop_closing = true;
