@@ -9,14 +9,15 @@
 #include <fstream>
 #include <memory>
 #include <optional>
-#include <sstream>
 
 #include <nlohmann/json.hpp>
 
 #include "command_registry.h"
 #include "lumaslam/core/error.h"
+#include "lumaslam/io/output_file.h"
 #include "lumaslam/synth/sequence.h"
 #include "run_pipeline.h"
+#include "settings_with_classes.h"
 
 namespace lumaslam::cli {
 namespace {
@@ -87,21 +88,10 @@ void printComparison(const std::vector<RunSummary>& runs) {
 // (docs/dynamic.md); the motion-evidence test (on by default for RGB-D) catches the crate.
 std::filesystem::path personOnlySettings(const std::filesystem::path& data,
                                          const std::filesystem::path& out) {
-  std::ifstream in(data / "settings.yaml");
-  if (!in) fail("{}: cannot be read", (data / "settings.yaml").string());
-  std::ostringstream text;
-  bool replaced = false;
-  for (std::string line; std::getline(in, line);) {
-    const bool classes = line.rfind("Detector.classes:", 0) == 0;
-    text << (classes ? "Detector.classes: \"person\"" : line) << "\n";
-    replaced = replaced || classes;
-  }
-  if (!replaced) text << "Detector.classes: \"person\"\n";
-  std::filesystem::create_directories(out);
   const auto path = out / "settings.yaml";
-  std::ofstream file(path);
-  file << text.str();
-  if (!file.flush()) fail("{}: cannot be written", path.string());
+  io::OutputFile file(path);  // creates `out`
+  file.stream() << settingsWithClasses(data / "settings.yaml", "person");
+  file.commit();
   return path;
 }
 
