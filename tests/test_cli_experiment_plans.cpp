@@ -36,7 +36,7 @@ lumaslam::test::CliResult dryRun(const fs::path& plan, const fs::path& out, cons
 // Runs (= jobs of a fresh --out) of each shipped plan: datasets x configurations x runs.
 const std::map<std::string, long> kJobs = {
     {"dynamic.yaml", 3 * 5 * 2},
-    {"enhancement_ablation.yaml", 2 * 4 * 2},
+    {"enhancement_ablation.yaml", (2 + 3) * 4 * 2},  // 2 synth + V1_01 at 3 dark levels
 };
 
 TEST(CliExperimentPlans, EveryShippedPlanParsesAndGivesItsJobs) {

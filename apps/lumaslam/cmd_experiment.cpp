@@ -91,6 +91,7 @@ int runExperiment(const ExperimentOptions& options) {
   const auto plan_file = std::filesystem::absolute(options.plan);
   const auto out = std::filesystem::absolute(options.out);
   Plan plan = readPlan(plan_file);
+  checkPerturbModels(plan);
   if (options.dry_run) return printDryRun(plan, out);
   io::requireWritableFolder(out);
   prepareSynthData(plan, out / "data");

@@ -183,8 +183,50 @@ std::string specOf(const Section& s) {
   return requiredString(s, "spec");
 }
 
-void readDataset(const Section& s, std::vector<PlanDataset>& out) {
-  requireKnownKeys(s, {"name", "spec", "settings", "seeds", "frames"});
+std::vector<int> levelsOf(const Section& s) {
+  const cv::FileNode n = s["levels"];
+  if (n.empty()) s.invalid("levels", "missing (perturb needs a list of levels 0..5)");
+  std::vector<int> levels;
+  const auto add = [&](const cv::FileNode& item) {
+    if (!item.isInt() || static_cast<int>(item) < 0 || static_cast<int>(item) > 5) {
+      s.invalid("levels", "expected a list of integers 0..5");
+    }
+    levels.push_back(static_cast<int>(item));
+  };
+  if (n.isSeq()) {
+    for (const auto& item : n) add(item);
+  } else {
+    add(n);
+  }
+  if (levels.empty()) s.invalid("levels", "empty list");
+  return levels;
+}
+
+// `perturb:` and `levels:`: each dataset read from this section becomes one per level,
+// named NAME-MODELLEVEL.
+void expandPerturbed(const Section& s, std::vector<PlanDataset>& datasets) {
+  const auto model = findString(s, "perturb");
+  if (!model) {
+    if (!s["levels"].empty()) s.invalid("levels", "only with perturb: MODEL");
+    return;
+  }
+  std::vector<PlanDataset> expanded;
+  for (const auto& dataset : datasets) {
+    for (const int level : levelsOf(s)) {
+      PlanDataset d = dataset;
+      d.name = fmt::format("{}-{}{}", dataset.name, *model, level);
+      requireFolderName(s, "perturb", d.name);
+      const std::string source = dataset.synth ? dataset.synth->folder : dataset.name;
+      d.perturb = PlanDataset::Perturb{*model, level,
+                                       fmt::format("perturbed/{}-{}{}", source, *model, level),
+                                       dataset.spec, s.key("perturb")};
+      expanded.push_back(std::move(d));
+    }
+  }
+  datasets = std::move(expanded);
+}
+
+void readDatasetsOfSpec(const Section& s, std::vector<PlanDataset>& out) {
   const std::string spec = specOf(s);
   if (spec.starts_with("synth:")) {
     if (!s["settings"].empty()) s.invalid("settings", "synth datasets bring their own");
@@ -204,6 +246,14 @@ void readDataset(const Section& s, std::vector<PlanDataset>& out) {
   }
   if (const auto frames = findInt(s, "frames", 1)) d.max_frames = *frames;
   out.push_back(std::move(d));
+}
+
+void readDataset(const Section& s, std::vector<PlanDataset>& out) {
+  requireKnownKeys(s, {"name", "spec", "settings", "seeds", "frames", "perturb", "levels"});
+  std::vector<PlanDataset> read;
+  readDatasetsOfSpec(s, read);
+  expandPerturbed(s, read);
+  out.insert(out.end(), read.begin(), read.end());
 }
 
 // "yolo:rel/model.onnx" -> "yolo:PLAN_FOLDER/rel/model.onnx"; likewise boxes:FILE unless it

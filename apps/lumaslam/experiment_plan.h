@@ -24,6 +24,16 @@ struct PlanDataset {
     bool stereo = false;  // EuRoC layout (euroc:), else TUM RGB-D (tum:)
   };
   std::optional<Synth> synth;
+  // `perturb: MODEL` with `levels: [...]`: one dataset per level, a copy of the dataset (of the
+  // synth one once generated) made as `lumaslam perturb` makes it, into DIR/data/<folder>.
+  struct Perturb {
+    std::string model;        // a synth::PerturbModel name, checked by checkPerturbModels
+    int level = 0;            // 0..5
+    std::string folder;       // under DIR/data/
+    std::string source_spec;  // the dataset copied (a synth one: its generated folder instead)
+    std::string key;          // "datasets[i].perturb", for errors
+  };
+  std::optional<Perturb> perturb;
 };
 
 struct PlanConfig {
