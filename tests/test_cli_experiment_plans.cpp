@@ -37,6 +37,7 @@ lumaslam::test::CliResult dryRun(const fs::path& plan, const fs::path& out, cons
 const std::map<std::string, long> kJobs = {
     {"dynamic.yaml", 3 * 5 * 2},
     {"enhancement_ablation.yaml", (2 + 3) * 4 * 2},  // 2 synth + V1_01 at 3 dark levels
+    {"timing.yaml", 3 * 2 * 3},
 };
 
 TEST(CliExperimentPlans, EveryShippedPlanParsesAndGivesItsJobs) {
