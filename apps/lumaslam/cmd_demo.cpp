@@ -17,7 +17,7 @@
 #include "lumaslam/io/output_file.h"
 #include "lumaslam/synth/sequence.h"
 #include "run_pipeline.h"
-#include "settings_with_classes.h"
+#include "settings_copy.h"
 
 namespace lumaslam::cli {
 namespace {
@@ -90,7 +90,7 @@ std::filesystem::path personOnlySettings(const std::filesystem::path& data,
                                          const std::filesystem::path& out) {
   const auto path = out / "settings.yaml";
   io::OutputFile file(path);  // creates `out`
-  file.stream() << settingsWithClasses(data / "settings.yaml", "person");
+  file.stream() << settingsWithValues(data / "settings.yaml", {{"Detector.classes", "person"}});
   file.commit();
   return path;
 }

@@ -95,7 +95,7 @@ int runExperiment(const ExperimentOptions& options) {
   if (options.dry_run) return printDryRun(plan, out);
   io::requireWritableFolder(out);
   prepareSynthData(plan, out / "data");
-  writeClassSettings(plan, out);
+  writeConfigSettings(plan, out);
   evaluateExternals(plan, out / "runs");
   const auto runs = experimentRuns(plan, out / "runs");
   writeRunList(plan, runs, out);

@@ -23,8 +23,8 @@ RunOptions runOptions(const PlanDataset& dataset, const PlanConfig& config,
                       const std::filesystem::path& dir) {
   RunOptions o;
   o.dataset = dataset.spec;
-  o.settings = dataset.settings;
-  if (config.detector_classes) o.settings = classSettingsFile(dir, dataset.name, config.name);
+  o.settings = config.settings.value_or(dataset.settings);
+  if (config.changesSettings()) o.settings = configSettingsFile(dir, dataset.name, config.name);
   o.max_frames = dataset.max_frames;
   o.enhance_preset = config.enhance;
   if (config.detector) {

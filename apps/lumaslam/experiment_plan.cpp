@@ -268,13 +268,23 @@ std::string resolveDetector(const Section& s, const std::string& detector) {
 }
 
 PlanConfig readConfig(const Section& s) {
-  requireKnownKeys(s, {"name", "enhance", "detector", "detector_classes", "vocabulary",
-                       "sequential", "loop_closing", "motion_evidence"});
+  requireKnownKeys(s, {"name", "settings", "enhance", "detector", "detector_classes", "sensor",
+                       "vocabulary", "sequential", "loop_closing", "motion_evidence"});
   PlanConfig c;
   c.name = requiredString(s, "name");
   requireFolderName(s, "name", c.name);
   c.enhance = findString(s, "enhance");
   if (const auto detector = findString(s, "detector")) c.detector = resolveDetector(s, *detector);
+  if (const auto settings = findString(s, "settings")) {
+    c.settings = fromPlanFolder(s.plan, *settings);
+    if (!std::filesystem::is_regular_file(*c.settings)) {
+      s.invalid("settings", fmt::format("{} not found", c.settings->string()));
+    }
+  }
+  c.sensor = findString(s, "sensor");
+  if (c.sensor && *c.sensor != "mono" && *c.sensor != "stereo" && *c.sensor != "rgbd") {
+    s.invalid("sensor", fmt::format("'{}' (expected mono, stereo or rgbd)", *c.sensor));
+  }
   c.detector_classes = findString(s, "detector_classes");
   if (c.detector_classes && c.detector_classes->empty()) {
     s.invalid("detector_classes", "empty (expected class names, e.g. \"person\")");

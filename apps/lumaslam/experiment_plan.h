@@ -40,8 +40,14 @@ struct PlanConfig {
   std::string name;  // folder under DIR/runs/<dataset>/
   std::optional<std::string> enhance;
   std::optional<std::string> detector;  // "{dataset}" is replaced by the dataset's folder
+  // A settings file replacing the dataset's for this configuration's runs.
+  std::optional<std::filesystem::path> settings;
   // Detector.classes for this configuration's runs, e.g. "person" (a copy of the settings).
   std::optional<std::string> detector_classes;
+  // System.sensor for this configuration's runs, e.g. "mono" for the rgb stream of an RGB-D
+  // dataset (a copy of the settings).
+  std::optional<std::string> sensor;
+  bool changesSettings() const { return detector_classes || sensor; }
   std::optional<std::filesystem::path> vocabulary;
   bool sequential = false;
   bool loop_closing = true;

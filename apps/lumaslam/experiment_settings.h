@@ -1,8 +1,9 @@
 #pragma once
-// Configurations with `detector_classes:` (docs/experiments.md) run with a copy of the
-// dataset's settings whose Detector.classes is replaced, written to
-// DIR/settings/<dataset>/<config>.yaml and passed as `run --settings`: e.g. "person" for YOLO
-// on synthetic data, whose settings name the generator's classes (person,box; YOLO knows no box).
+// Configurations with `detector_classes:` or `sensor:` (docs/experiments.md) run with a copy of
+// their settings (the configuration's `settings:`, else the dataset's) with Detector.classes /
+// System.sensor set, written to DIR/settings/<dataset>/<config>.yaml and passed as `run
+// --settings`: e.g. "person" for YOLO on synthetic data, whose settings name the generator's
+// classes (person,box; YOLO knows no box), or "mono" for the rgb stream of an RGB-D dataset.
 #include <filesystem>
 #include <string>
 
@@ -11,13 +12,13 @@
 namespace lumaslam::cli {
 
 // DIR/settings/<dataset>/<config>.yaml
-std::filesystem::path classSettingsFile(const std::filesystem::path& dir,
-                                        const std::string& dataset, const std::string& config);
+std::filesystem::path configSettingsFile(const std::filesystem::path& dir,
+                                         const std::string& dataset, const std::string& config);
 
-// Writes the copy for every dataset x configuration with detector_classes (after the synth data
-// is prepared: its settings are the generator's). Relative paths in the copied file
+// Writes the copy for every dataset x configuration with detector_classes or sensor (after the
+// synth data is prepared: its settings are the generator's). Relative paths in the copied file
 // (System.datasetRoot, Loop.vocabulary, Detector.model, Detector.box_file, Detector.names) are
 // made absolute from the original's folder.
-void writeClassSettings(const Plan& plan, const std::filesystem::path& dir);
+void writeConfigSettings(const Plan& plan, const std::filesystem::path& dir);
 
 }  // namespace lumaslam::cli

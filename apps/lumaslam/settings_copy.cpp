@@ -1,6 +1,7 @@
-#include "settings_with_classes.h"
+#include "settings_copy.h"
 
 #include <array>
+#include <map>
 #include <sstream>
 
 #include <fmt/format.h>
@@ -44,20 +45,30 @@ std::string withAbsolutePath(const std::string& line, const std::filesystem::pat
   return line;
 }
 
+// The key a "Key: value" line sets, or "" for other lines.
+std::string keyOf(const std::string& line) {
+  const auto colon = line.find(':');
+  if (colon == std::string::npos || line.empty() || line[0] == '#' || line[0] == ' ') return {};
+  return line.substr(0, colon);
+}
+
 }  // namespace
 
-std::string settingsWithClasses(const std::filesystem::path& source, const std::string& classes) {
+std::string settingsWithValues(const std::filesystem::path& source,
+                               const std::map<std::string, std::string>& values) {
   std::istringstream in(core::readWholeFile(source, "settings file"));
   std::ostringstream text;
-  bool replaced = false;
+  std::map<std::string, std::string> missing = values;
   for (std::string line; std::getline(in, line);) {
-    const bool is_classes = hasKey(line, "Detector.classes");
-    text << (is_classes ? fmt::format("Detector.classes: \"{}\"", classes)
-                        : withAbsolutePath(line, source.parent_path()))
-         << '\n';
-    replaced = replaced || is_classes;
+    const auto it = values.find(keyOf(line));
+    if (it != values.end()) {
+      text << fmt::format("{}: \"{}\"\n", it->first, it->second);
+      missing.erase(it->first);
+    } else {
+      text << withAbsolutePath(line, source.parent_path()) << '\n';
+    }
   }
-  if (!replaced) text << fmt::format("Detector.classes: \"{}\"\n", classes);
+  for (const auto& [key, value] : missing) text << fmt::format("{}: \"{}\"\n", key, value);
   return text.str();
 }
 
