@@ -122,11 +122,7 @@ void Pipeline::setUpStereoRectification() {
 }
 
 void Pipeline::setUpEnhancement(const PipelineOptions& options) {
-  auto enhancer_params = settings_.file ? enhance::EnhancerParams::fromSettings(*settings_.file)
-                                        : enhance::EnhancerParams{};
-  if (options.enhance_preset) {
-    enhancer_params = enhance::EnhancerParams::forPreset(*options.enhance_preset);
-  }
+  const auto enhancer_params = enhancerParamsFor(settings_, options);
   if (enhancer_params.preset == "off") return;
   enhancer_ = std::make_unique<enhance::Enhancer>(enhancer_params);
   // Enhancement.stereo "independent": the right image gets its own enhancer (and online

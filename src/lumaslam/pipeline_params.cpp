@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "lumaslam/core/settings_section.h"
+#include "lumaslam/enhance/enhancer_params.h"
 #include "lumaslam/feature/orb_settings.h"
 #include "lumaslam/loop/loop_closer_settings.h"
 #include "lumaslam/loop/place_recognition.h"
@@ -55,6 +56,8 @@ StageParams stageParamsFor(const io::Settings& settings, bool sequential, bool m
                      mapperDefaults(settings, sequential), loopDefaults(settings, sequential)};
   if (settings.file) {
     track::readTrackingSettings(*settings.file, params.tracker);
+    track::readInitializerSettings(*settings.file, params.tracker.monocular);
+    track::readDynamicSettings(*settings.file, params.tracker.motion_evidence);
     mapping::readLocalMappingSettings(*settings.file, params.mapper);
     loop::readLoopClosingSettings(*settings.file, params.loop);
   }
@@ -63,8 +66,17 @@ StageParams stageParamsFor(const io::Settings& settings, bool sequential, bool m
 
 std::string printStageParams(const StageParams& params) {
   return track::printTrackingSettings(params.tracker) +
+         track::printInitializerSettings(params.tracker.monocular) +
+         track::printDynamicSettings(params.tracker.motion_evidence) +
          mapping::printLocalMappingSettings(params.mapper) +
          loop::printLoopClosingSettings(params.loop);
+}
+
+enhance::EnhancerParams enhancerParamsFor(const io::Settings& settings,
+                                          const PipelineOptions& options) {
+  if (options.enhance_preset) return enhance::EnhancerParams::forPreset(*options.enhance_preset);
+  return settings.file ? enhance::EnhancerParams::fromSettings(*settings.file)
+                       : enhance::EnhancerParams{};
 }
 
 std::string effectiveSettings(const io::Settings& settings, const PipelineOptions& options) {
@@ -75,9 +87,8 @@ std::string effectiveSettings(const io::Settings& settings, const PipelineOption
       settings.file ? feature::OrbSettings::fromSettings(*settings.file) : feature::OrbSettings{};
   core::SectionPrinter system("System");
   system("sequential", sequential);
-  core::SectionPrinter dynamic("Dynamic");
-  dynamic("motionEvidence", motion_evidence);
-  return orb.settingsLines() + system.text() + dynamic.text() +
+  return orb.settingsLines() + system.text() +
+         enhancerParamsFor(settings, options).toSettingsText() +
          printStageParams(stageParamsFor(settings, sequential, motion_evidence));
 }
 

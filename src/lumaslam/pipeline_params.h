@@ -4,6 +4,7 @@
 // Loop.* keys over them (docs/settings.md). `lumaslam run --print-settings` prints them.
 #include <string>
 
+#include "lumaslam/enhance/enhancer_params.h"
 #include "lumaslam/io/settings.h"
 #include "lumaslam/loop/loop_closer.h"
 #include "lumaslam/mapping/local_mapper.h"
@@ -23,9 +24,15 @@ StageParams stageParamsFor(const io::Settings& settings, bool sequential, bool m
 // The keys of stageParamsFor as settings-file lines, one section after another.
 std::string printStageParams(const StageParams& params);
 
+// Enhancement.* of the file (preset "best" without one), or the preset of options.enhance_preset
+// (`--enhance`) in its place; preset "off" means no enhancement.
+enhance::EnhancerParams enhancerParamsFor(const io::Settings& settings,
+                                          const PipelineOptions& options);
+
 // What a Pipeline built from `settings` and `options` runs with, as settings-file lines that
-// read back to the same values: ORBextractor.*, System.sequential, Dynamic.motionEvidence and
-// the stage sections (`lumaslam run --print-settings`).
+// read back to the same values: ORBextractor.*, System.sequential, Enhancement.* and the stage
+// sections (Tracking.*, Initializer.*, Dynamic.*, LocalMapping.*, Loop.*) (`lumaslam run
+// --print-settings`).
 std::string effectiveSettings(const io::Settings& settings, const PipelineOptions& options);
 
 }  // namespace lumaslam
