@@ -56,6 +56,9 @@ struct DetectorParams {
   static DetectorParams fromSettings(const core::SettingsFile& settings,
                                      bool require_source = true);
 
+  // Every Detector.* key as settings lines that fromSettings reads back to these values.
+  std::string settingsLines() const;
+
   // names, or coco80.names in the model's folder when names is empty.
   std::filesystem::path namesPath() const;
 };
