@@ -113,5 +113,24 @@ TEST(CoreSettingsSection, RangeDescriptions) {
   EXPECT_FALSE(Range::above(0).contains(0.0));
 }
 
+// Text keys (Detector.type, Detector.model) go through the same reader and printer, quoted.
+TEST(CoreSettingsSection, TextKeysReadBackQuoted) {
+  std::string type = "yolo";
+  SectionPrinter printer("Demo");
+  printer("type", std::string("box_file"));
+  EXPECT_EQ(printer.text(), "Demo.type: \"box_file\"\n");
+  const auto file = SettingsFile::fromString("%YAML:1.0\n" + printer.text(), "demo.yaml");
+  SectionReader(file, "Demo")("type", type);
+  EXPECT_EQ(type, "box_file");
+}
+
+// Log-odds thresholds (Dynamic.dynamicBelow) have a negative range.
+TEST(CoreSettingsSection, NegativeRanges) {
+  const Range below = Range::between(-20.0, 0.0);
+  EXPECT_EQ(below.describe(), "in [-20, 0]");
+  EXPECT_TRUE(below.contains(-2.0));
+  EXPECT_FALSE(below.contains(0.5));
+}
+
 }  // namespace
 }  // namespace lumaslam::core

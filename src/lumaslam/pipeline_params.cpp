@@ -3,8 +3,10 @@
 #include <algorithm>
 
 #include "lumaslam/core/settings_section.h"
+#include "lumaslam/detect/detector_spec.h"
 #include "lumaslam/enhance/enhancer_params.h"
 #include "lumaslam/feature/orb_settings.h"
+#include "lumaslam/io/camera_settings_text.h"
 #include "lumaslam/loop/loop_closer_settings.h"
 #include "lumaslam/loop/place_recognition.h"
 #include "lumaslam/mapping/local_mapper_settings.h"
@@ -86,9 +88,12 @@ std::string effectiveSettings(const io::Settings& settings, const PipelineOption
   const auto orb =
       settings.file ? feature::OrbSettings::fromSettings(*settings.file) : feature::OrbSettings{};
   core::SectionPrinter system("System");
+  system("sensor", std::string(io::toString(settings.sensor)));
   system("sequential", sequential);
-  return orb.settingsLines() + system.text() +
+  const auto detector = detect::detectorParamsFor(settings.file.get(), options.detector);
+  return io::printCameraSettings(settings.camera) + orb.settingsLines() + system.text() +
          enhancerParamsFor(settings, options).toSettingsText() +
+         (detector ? detector->settingsLines() : "Detector.type: \"none\"\n") +
          printStageParams(stageParamsFor(settings, sequential, motion_evidence));
 }
 
