@@ -34,6 +34,51 @@ TEST(CliPrintSettings, ShowsTheSensorDefaultsOfAMonocularFile) {
   EXPECT_EQ(text.find("lumaslam_out"), std::string::npos);  // nothing was run
 }
 
+TEST(CliPrintSettings, ShowsEverySection) {
+  const std::string text = printed("kitti_04-12_mono.yaml");
+  for (const char* line :
+       {"System.sensor: \"mono\"\n", "Camera.type: \"Rectified\"\n", "Camera1.fx: 707.0912\n",
+        "Camera.fps: 10.0\n", "Enhancement.preset: \"best\"\n", "Detector.type: \"none\"\n",
+        "Initializer.minParallax: 1.0\n", "Initializer.ransacIterations: 200\n",
+        "Dynamic.motionEvidence: false\n", "Dynamic.dynamicBelow: -2.0\n",
+        "Dynamic.confirmedAbove: 0.9\n", "Dynamic.forget: 0.95\n"}) {
+    EXPECT_NE(text.find(line), std::string::npos) << line << " not in\n" << text;
+  }
+  EXPECT_EQ(text.find("Camera1.k1"), std::string::npos);  // a Rectified camera has none
+}
+
+// A monocular file's printed settings are a settings file of their own (camera 1, sensor and
+// every printed section): given as --settings, they print the same lines again.
+TEST(CliPrintSettings, PrintedSettingsPrintTheSameAgain) {
+  lumaslam::test::TempDir dir("print_settings_again");
+  const auto again = dir.path() / "again.yaml";
+  const std::string text = printed("kitti_04-12_mono.yaml", "--sequential --no-motion-evidence");
+  std::ofstream(again) << text;
+  const auto result =
+      runCli("run --dataset tum:/nowhere --settings " + again.string() + " --print-settings");
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  const auto body = [](const std::string& s) {  // without the comment naming the file
+    const auto from = s.find("\nCamera.");
+    return from == std::string::npos ? s : s.substr(from);
+  };
+  EXPECT_EQ(body(result.output.substr(result.output.find("%YAML:1.0"))), body(text));
+}
+
+TEST(CliPrintSettings, ABadNewKeyIsAnErrorNamingIt) {
+  lumaslam::test::TempDir dir("print_settings_bad_dynamic");
+  const auto settings = dir.path() / "bad.yaml";
+  std::ofstream(settings) << lumaslam::test::readTextFile(sourceDir() / "configs" /
+                                                          "tum_fr1_rgbd.yaml")
+                          << "\nDynamic.dynamicBelow: 0.5\n";
+  const auto result =
+      runCli("run --dataset tum:/nowhere --settings " + settings.string() + " --print-settings");
+  EXPECT_NE(result.exit_code, 0);
+  EXPECT_NE(result.output.find("bad.yaml"), std::string::npos) << result.output;
+  EXPECT_NE(result.output.find("key 'Dynamic.dynamicBelow': must be in [-20, 0], found 0.5"),
+            std::string::npos)
+      << result.output;
+}
+
 TEST(CliPrintSettings, ShowsCommandLineOverrides) {
   const std::string text = printed("tum_fr1_rgbd.yaml", "--sequential --no-motion-evidence");
   EXPECT_NE(text.find("System.sequential: true\n"), std::string::npos) << text;

@@ -12,9 +12,9 @@
 #include "lumaslam/core/settings_file.h"
 #include "lumaslam/eval/evaluation.h"
 #include "lumaslam/io/settings.h"
+#include "lumaslam/pipeline.h"
 #include "lumaslam/synth/dataset_writer.h"
 #include "lumaslam/synth/sequence.h"
-#include "lumaslam/pipeline.h"
 #include "test_trajectory_length.h"
 
 namespace lumaslam::test {
@@ -24,6 +24,7 @@ struct RunResult {
   std::size_t tracked = 0;
   std::optional<std::size_t> first_tracked;  // frame index of the first tracked frame
   std::size_t keyframes = 0;
+  std::size_t moving_features = 0;   // summed over the frames (TrackingOutcome::moving_features)
   double ground_truth_length = 0.0;  // metres travelled by the camera over the sequence
   eval::EvaluationReport report;
 };
@@ -79,6 +80,7 @@ inline RunResult runOnPreset(const std::string& preset, int frames, std::uint64_
     const auto frame = sequence.render(i);
     const auto result = system.track(sensorFrame(frame, settings.sensor));
     ground_truth.push_back({frame.timestamp(), frame.cam0.T_w_c});
+    run.moving_features += static_cast<std::size_t>(result.outcome.moving_features);
     if (result.outcome.state == track::TrackingState::Ok) {
       ++run.tracked;
       if (!run.first_tracked) run.first_tracked = static_cast<std::size_t>(i);

@@ -1,4 +1,5 @@
-// The Tracking.*, LocalMapping.* and Loop.* sections (issue 21): each key reaches its stage
+// The Tracking.*, Initializer.*, Dynamic.*, LocalMapping.* and Loop.* sections (issue 21), with
+// Camera.*, Enhancement.* and Detector.* in the printed settings: each key reaches its stage
 // over the defaults the Pipeline picks for the sensor, a value out of range is an Error naming
 // the key, a typo is reported with the key it misses, the printed settings read back to the
 // same values, and a changed key changes what a run does.
@@ -10,6 +11,7 @@
 #include "lumaslam/core/error.h"
 #include "lumaslam/core/settings_file.h"
 #include "lumaslam/pipeline_params.h"
+#include "lumaslam/track/tracker_settings.h"
 #include "test_system_run.h"
 
 namespace lumaslam {
@@ -67,6 +69,44 @@ TEST(StageSettings, FileKeysGoOverTheSensorDefaults) {
   EXPECT_EQ(edited.tracker.lost_search_radius, params.tracker.lost_search_radius);  // untouched
 }
 
+TEST(StageSettings, MotionEvidenceAndInitializerKeysAreRead) {
+  const auto defaults = stageParamsOf(settingsOf("xyz-rgbd", "", io::SensorType::Monocular));
+  const auto edited = stageParamsOf(settingsOf("xyz-rgbd",
+                                               "Dynamic.dynamicBelow: -3.5\n"
+                                               "Dynamic.forget: 0.9\n"
+                                               "Dynamic.regionCellSize: 32\n"
+                                               "Dynamic.flowRadius: 16.5\n"
+                                               "Initializer.minParallax: 2.0\n"
+                                               "Initializer.ransacIterations: 120\n"
+                                               "Initializer.matchRatio: 0.8\n"
+                                               "Initializer.minMatches: 80\n",
+                                               io::SensorType::Monocular));
+  const auto& dynamic = edited.tracker.motion_evidence;
+  EXPECT_EQ(dynamic.dynamic_below, -3.5);
+  EXPECT_EQ(dynamic.forget, 0.9);
+  EXPECT_EQ(dynamic.region_cell_px, 32);
+  EXPECT_FLOAT_EQ(dynamic.flow_radius_px, 16.5F);
+  EXPECT_EQ(dynamic.confirmed_above, defaults.tracker.motion_evidence.confirmed_above);
+  const auto& init = edited.tracker.monocular;
+  EXPECT_EQ(init.two_view.min_parallax_deg, 2.0);
+  EXPECT_EQ(init.two_view.ransac_iterations, 120);
+  EXPECT_FLOAT_EQ(init.ratio, 0.8F);
+  EXPECT_EQ(init.min_matches, 80);
+  EXPECT_EQ(init.min_features, defaults.tracker.monocular.min_features);  // untouched
+  EXPECT_FALSE(init.two_view.threaded);  // follows System.sequential, not a key
+}
+
+// Today's numbers are the defaults: a file without the keys runs as before issue 21.
+TEST(StageSettings, MotionEvidenceAndInitializerDefaultsAreTheStructDefaults) {
+  const auto params = stageParamsOf(settingsOf("xyz-rgbd", "", io::SensorType::Monocular));
+  track::MotionEvidenceParams dynamic;
+  dynamic.enabled = false;
+  EXPECT_EQ(track::printDynamicSettings(params.tracker.motion_evidence),
+            track::printDynamicSettings(dynamic));
+  EXPECT_EQ(track::printInitializerSettings(params.tracker.monocular),
+            track::printInitializerSettings(track::MonocularInitParams{}));
+}
+
 TEST(StageSettings, AValueOutOfRangeIsAnErrorNamingFileAndKey) {
   const std::vector<std::pair<std::string, std::string>> cases = {
       {"Tracking.minInlierFractionOfLast: 1.5\n", "must be in [0, 1], found 1.5"},
@@ -74,6 +114,13 @@ TEST(StageSettings, AValueOutOfRangeIsAnErrorNamingFileAndKey) {
       {"LocalMapping.redundancy: 0\n", "must be in (0, 1], found 0"},
       {"Loop.projectionRadius: -2.0\n", "must be > 0, found -2"},
       {"Tracking.minLocalMapInliers: 12.5\n", "expected integer"},
+      {"Dynamic.forget: 0.99\n", "must be in [0, 0.96], found 0.99"},
+      {"Dynamic.dynamicBelow: 1.0\n", "must be in [-20, 0], found 1"},
+      {"Dynamic.regionCellSize: 4\n", "must be >= 8, found 4"},
+      {"Dynamic.flowRatio: 0\n", "must be in (0, 1], found 0"},
+      {"Initializer.minParallax: -1.0\n", "must be in [0, 90], found -1"},
+      {"Initializer.sigma: 0\n", "must be > 0, found 0"},
+      {"Initializer.minMatches: 5\n", "must be >= 8, found 5"},
   };
   for (const auto& [line, why] : cases) {
     try {
@@ -92,7 +139,9 @@ TEST(StageSettings, AValueOutOfRangeIsAnErrorNamingFileAndKey) {
 TEST(StageSettings, ATypoIsReportedWithTheKeyItMisses) {
   const auto settings = settingsOf("xyz-rgbd",
                                    "Tracking.minLocalMapInlier: 40\n"
-                                   "LocalMapping.baIteration: 5\n");
+                                   "LocalMapping.baIteration: 5\n"
+                                   "Dynamic.dynamicBellow: -3\n"
+                                   "Initializer.minParalax: 2\n");
   PipelineOptions options;
   options.sequential = true;
   options.vocabulary = "none";
@@ -101,14 +150,18 @@ TEST(StageSettings, ATypoIsReportedWithTheKeyItMisses) {
   for (const auto& [key, suggestion] : core::unknownKeys(*settings.file)) found[key] = suggestion;
   EXPECT_EQ(found["Tracking.minLocalMapInlier"], "Tracking.minLocalMapInliers");
   EXPECT_EQ(found["LocalMapping.baIteration"], "LocalMapping.baIterations");
+  EXPECT_EQ(found["Dynamic.dynamicBellow"], "Dynamic.dynamicBelow");
+  EXPECT_EQ(found["Initializer.minParalax"], "Initializer.minParallax");
 }
 
 // The generator's file without the keys effectiveSettings prints, so that the printed lines
 // can be appended without setting a key twice.
 std::string withoutPrintedSections(std::string yaml) {
   const std::regex printed(
-      "(ORBextractor|Tracking|LocalMapping|Loop)\\.[A-Za-z]+: .*\n|System\\.sequential: "
-      ".*\n|Dynamic\\.motionEvidence: .*\n");
+      "(ORBextractor|Tracking|Initializer|Dynamic|LocalMapping|Loop|Enhancement|Detector)\\."
+      "[A-Za-z_.]+: .*\n|System\\.(sensor|sequential): .*\n|"
+      "Camera1?\\.(type|fx|fy|cx|cy|k1|k2|p1|p2|k3|width|height|newWidth|newHeight|fps|RGB): "
+      ".*\n");
   return std::regex_replace(yaml, printed, "");
 }
 
@@ -116,19 +169,29 @@ TEST(StageSettings, PrintedSettingsReadBackToTheSameValues) {
   const synth::SequenceRenderer sequence(synth::findPreset("xyz-rgbd"), 2, 1);
   const auto edited = test::presetSettings(sequence, [](std::string yaml) {
     return withoutPrintedSections(yaml) +
+           "Camera.fx: 535.4\nCamera.fy: 539.2\nCamera.cx: 320.1\nCamera.cy: 247.6\n"
+           "Camera.width: 640\nCamera.height: 480\nCamera.newWidth: 320\n"
+           "Camera.newHeight: 240\nCamera.RGB: 0\n"
            "Tracking.minInlierFractionOfLast: 0.3\nTracking.motionSearchRadius: 7.3\n"
            "LocalMapping.redundancy: 0.85\nLoop.globalBundleAdjustment: 0\n"
-           "ORBextractor.nFeatures: 1100\n";
+           "ORBextractor.nFeatures: 1100\nDynamic.dynamicBelow: -2.5\n"
+           "Initializer.minParallax: 1.5\nEnhancement.clahe.tiles_x: 4\n"
+           "Detector.type: box_file\nDetector.box_file: boxes.txt\nDetector.stride: 3\n";
   });
   PipelineOptions options;
   options.sequential = true;
   const std::string printed = effectiveSettings(edited, options);
-  EXPECT_NE(printed.find("Tracking.minInlierFractionOfLast: 0.3\n"), std::string::npos);
-  EXPECT_NE(printed.find("Tracking.motionSearchRadius: 7.3\n"), std::string::npos);
-  EXPECT_NE(printed.find("Loop.globalBundleAdjustment: false\n"), std::string::npos);
-  EXPECT_NE(printed.find("ORBextractor.nFeatures: 1100\n"), std::string::npos);
-  EXPECT_NE(printed.find("System.sequential: true\n"), std::string::npos);
-  EXPECT_NE(printed.find("LocalMapping.triangulationNeighbours: 10\n"), std::string::npos);
+  for (const char* line :
+       {"Tracking.minInlierFractionOfLast: 0.3\n", "Tracking.motionSearchRadius: 7.3\n",
+        "Loop.globalBundleAdjustment: false\n", "ORBextractor.nFeatures: 1100\n",
+        "System.sequential: true\n", "System.sensor: \"rgbd\"\n",
+        "LocalMapping.triangulationNeighbours: 10\n", "Dynamic.motionEvidence: true\n",
+        "Dynamic.dynamicBelow: -2.5\n", "Dynamic.forget: 0.95\n", "Initializer.minParallax: 1.5\n",
+        "Initializer.ransacIterations: 200\n", "Enhancement.clahe.tiles_x: 4\n",
+        "Detector.type: \"box_file\"\n", "Detector.stride: 3\n", "Camera1.fx: 535.4\n",
+        "Camera.newWidth: 320\n", "Camera.RGB: false\n", "Camera.type: \"PinHole\"\n"}) {
+    EXPECT_NE(printed.find(line), std::string::npos) << line << " not in\n" << printed;
+  }
 
   const auto reread = test::presetSettings(
       sequence, [&](std::string yaml) { return withoutPrintedSections(yaml) + printed; });
@@ -136,6 +199,17 @@ TEST(StageSettings, PrintedSettingsReadBackToTheSameValues) {
   for (const auto& [key, suggestion] : core::unknownKeys(*reread.file)) {
     EXPECT_EQ(printed.find(key + ":"), std::string::npos) << "printed a key nothing reads: " << key;
   }
+}
+
+TEST(StageSettings, WithoutADetectorTheTypeIsPrintedAsNone) {
+  PipelineOptions options;
+  const std::string printed = effectiveSettings(settingsOf("xyz-rgbd", ""), options);
+  EXPECT_NE(printed.find("Detector.type: \"none\"\n"), std::string::npos) << printed;
+  EXPECT_EQ(printed.find("Detector.stride"), std::string::npos);
+  options.enhance_preset = "off";
+  EXPECT_NE(
+      effectiveSettings(settingsOf("xyz-rgbd", ""), options).find("Enhancement.preset: \"off\"\n"),
+      std::string::npos);
 }
 
 // Effects on a run (sequential, deterministic: the mapper is always idle, so
@@ -155,6 +229,20 @@ TEST(StageSettings, ChangedKeysChangeWhatARunDoes) {
   EXPECT_LE(spaced.keyframes, 80U / 20U + 1U);
   EXPECT_LT(spaced.keyframes, defaults.keyframes);
   EXPECT_NE(no_ba.report.ate.stats.rmse, defaults.report.ate.stats.rmse);
+}
+
+// Dynamic.dynamicBelow: the log-odds under which a feature counts as moving. On a walking
+// sequence (RGB-D, motion evidence on by default) a threshold nearer 0 flags more features.
+TEST(StageSettings, DynamicBelowChangesTheMovingFeatures) {
+  const auto with = [](const std::string& extra) {
+    test::RunConfig config;
+    config.edit = [extra](std::string yaml) { return yaml + "\n" + extra; };
+    return test::runOnPreset("walking-xyz-rgbd", 40, 1, config);
+  };
+  const auto defaults = with("");
+  const auto eager = with("Dynamic.dynamicBelow: -0.5\n");
+  EXPECT_GT(defaults.moving_features, 0U);
+  EXPECT_GT(eager.moving_features, defaults.moving_features);
 }
 
 }  // namespace
