@@ -245,5 +245,21 @@ TEST(StageSettings, DynamicBelowChangesTheMovingFeatures) {
   EXPECT_GT(eager.moving_features, defaults.moving_features);
 }
 
+// Initializer.minParallax: the monocular two-view start waits for more parallax (xyz-rgbd's
+// colour stream as a monocular camera).
+TEST(StageSettings, InitializerMinParallaxDelaysTheMonocularStart) {
+  const auto with = [](const std::string& extra) {
+    test::RunConfig config;
+    config.edit = [extra](std::string yaml) { return yaml + "\n" + extra; };
+    config.sensor = io::SensorType::Monocular;
+    return test::runOnPreset("xyz-rgbd", 40, 1, config);
+  };
+  const auto defaults = with("");
+  const auto patient = with("Initializer.minParallax: 3.0\n");
+  ASSERT_TRUE(defaults.first_tracked.has_value());
+  ASSERT_TRUE(patient.first_tracked.has_value());
+  EXPECT_GT(*patient.first_tracked, *defaults.first_tracked);  // frame 13 -> 19 when written
+}
+
 }  // namespace
 }  // namespace lumaslam
