@@ -212,15 +212,20 @@ TEST(StageSettings, WithoutADetectorTheTypeIsPrintedAsNone) {
       std::string::npos);
 }
 
+// A sequential run of `frames` frames of `preset` (seed 1) with `extra` settings lines.
+test::RunResult runWith(const std::string& preset, int frames, const std::string& extra,
+                        std::optional<io::SensorType> sensor = std::nullopt) {
+  test::RunConfig config;
+  config.edit = [extra](std::string yaml) { return yaml + "\n" + extra; };
+  config.sensor = sensor;
+  return test::runOnPreset(preset, frames, 1, config);
+}
+
 // Effects on a run (sequential, deterministic: the mapper is always idle, so
 // Tracking.maxFramesBetweenKeyframes, which applies to a busy mapper, has none): keyframes no
 // sooner than 20 frames apart, and local bundle adjustment off changes the poses.
 TEST(StageSettings, ChangedKeysChangeWhatARunDoes) {
-  const auto with = [](const std::string& extra) {
-    test::RunConfig config;
-    config.edit = [extra](std::string yaml) { return yaml + "\n" + extra; };
-    return test::runOnPreset("xyz-rgbd", 80, 1, config);
-  };
+  const auto with = [](const std::string& extra) { return runWith("xyz-rgbd", 80, extra); };
   const auto defaults = with("");
   const auto spaced = with("Tracking.minFramesBetweenKeyframes: 20\n");
   const auto no_ba = with("LocalMapping.bundleAdjustment: false\n");
@@ -234,11 +239,7 @@ TEST(StageSettings, ChangedKeysChangeWhatARunDoes) {
 // Dynamic.dynamicBelow: the log-odds under which a feature counts as moving. On a walking
 // sequence (RGB-D, motion evidence on by default) a threshold nearer 0 flags more features.
 TEST(StageSettings, DynamicBelowChangesTheMovingFeatures) {
-  const auto with = [](const std::string& extra) {
-    test::RunConfig config;
-    config.edit = [extra](std::string yaml) { return yaml + "\n" + extra; };
-    return test::runOnPreset("walking-xyz-rgbd", 40, 1, config);
-  };
+  const auto with = [](const std::string& extra) { return runWith("walking-xyz-rgbd", 40, extra); };
   const auto defaults = with("");
   const auto eager = with("Dynamic.dynamicBelow: -0.5\n");
   EXPECT_GT(defaults.moving_features, 0U);
@@ -249,10 +250,7 @@ TEST(StageSettings, DynamicBelowChangesTheMovingFeatures) {
 // colour stream as a monocular camera).
 TEST(StageSettings, InitializerMinParallaxDelaysTheMonocularStart) {
   const auto with = [](const std::string& extra) {
-    test::RunConfig config;
-    config.edit = [extra](std::string yaml) { return yaml + "\n" + extra; };
-    config.sensor = io::SensorType::Monocular;
-    return test::runOnPreset("xyz-rgbd", 40, 1, config);
+    return runWith("xyz-rgbd", 40, extra, io::SensorType::Monocular);
   };
   const auto defaults = with("");
   const auto patient = with("Initializer.minParallax: 3.0\n");
