@@ -56,6 +56,17 @@ std::optional<double> medianMsPerFrame(const CellRuns& cell) {
   return median(values);
 }
 
+// Median over the complete runs of a stage's per-run median; none unless each run has it.
+std::optional<double> medianStageMs(const CellRuns& cell, const std::string& column) {
+  std::vector<double> values;
+  for (const ResultRow* r : cell.complete) {
+    const auto it = r->stage_ms_median.find(column);
+    if (it == r->stage_ms_median.end()) return std::nullopt;
+    values.push_back(it->second);
+  }
+  return median(values);
+}
+
 // 100 x frames tracked / frames, over the complete runs.
 std::optional<double> trackedPercent(const CellRuns& cell) {
   long long tracked = 0, frames = 0;
@@ -130,12 +141,21 @@ std::string resultsSection(const std::vector<CellRuns>& cells, const std::string
 std::string timingSection(const std::vector<CellRuns>& cells) {
   std::vector<std::vector<Cell>> rows;
   for (const auto& cell : cells) {
-    rows.push_back({{cell.dataset},
-                    {cell.config},
-                    fixedCell(cell, "cell.ms_per_frame_median", medianMsPerFrame(cell), 2)});
+    std::vector<Cell> row{{cell.dataset},
+                          {cell.config},
+                          fixedCell(cell, "cell.ms_per_frame_median", medianMsPerFrame(cell), 2)};
+    for (const char* column : kStageColumns) {
+      row.push_back(
+          fixedCell(cell, fmt::format("cell.{}_median", column), medianStageMs(cell, column), 2));
+    }
+    rows.push_back(std::move(row));
   }
-  return "<p>Median over the complete runs of each run's median time per frame.</p>\n" +
-         htmlTable({"dataset", "configuration", "ms / frame"}, rows);
+  return "<p>Median over the complete runs of each run's median time per frame, in total and "
+         "per module (timing.csv; detection wait: the tracking thread blocked on the detector; "
+         "motion: the motion test).</p>\n" +
+         htmlTable({"dataset", "configuration", "ms / frame", "enhance", "features", "tracking",
+                    "mapping", "detection wait", "motion"},
+                   rows);
 }
 
 std::string failuresSection(const std::vector<ResultRow>& rows) {

@@ -2,14 +2,39 @@
 
 #include <algorithm>
 #include <fstream>
+#include <variant>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "lumaslam/core/error.h"
 #include "lumaslam/io/output_file.h"
+#include "run_folder.h"
 
 namespace lumaslam::cli {
 namespace {
+
+double median(std::vector<double> values) {
+  std::sort(values.begin(), values.end());
+  const std::size_t n = values.size();
+  return n % 2 == 1 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
+}
+
+// Medians over frames of the stage columns of a run's timing.csv (none when it is unreadable).
+std::map<std::string, double> stageMedians(const std::filesystem::path& timing_csv) {
+  std::map<std::string, double> medians;
+  const auto read = readTimingTable(timing_csv);
+  const auto* table = std::get_if<TimingTable>(&read);
+  if (!table || table->rows.empty()) return medians;
+  for (const char* column : kStageColumns) {
+    if (!table->has(column)) continue;
+    try {
+      medians[column] = median(table->numbers(column));
+    } catch (const Error&) {  // a field that is not a number: no median for the column
+    }
+  }
+  return medians;
+}
 
 ResultRow rowOf(const ExperimentRun& run,
                 const std::map<std::filesystem::path, std::string>& errors) {
@@ -31,12 +56,18 @@ ResultRow rowOf(const ExperimentRun& run,
   if (summary.contains("ms_per_frame")) {
     row.ms_per_frame_median = summary["ms_per_frame"].value("median", 0.0);
   }
+  row.stage_ms_median = stageMedians(run.options.out / "timing.csv");
   if (summary.contains("evaluation")) {
     const auto& ate = summary["evaluation"]["ate"];
     row.ate = AteStats{ate.value("rmse", 0.0), ate.value("mean", 0.0), ate.value("median", 0.0),
                        ate.value("std", 0.0)};
   }
   return row;
+}
+
+std::optional<double> stageOf(const ResultRow& row, const char* column) {
+  const auto it = row.stage_ms_median.find(column);
+  return it == row.stage_ms_median.end() ? std::nullopt : std::optional<double>(it->second);
 }
 
 // Shortest text that reads back to the same double; empty when there is no value.
@@ -55,16 +86,20 @@ std::string csvField(const std::string& text) {
 void writeResultsCsv(const std::vector<ResultRow>& rows, const std::filesystem::path& file) {
   io::OutputFile out(file);
   out.stream() << "dataset,config,run,status,frames,tracked,ate_rmse,ate_mean,ate_median,ate_std,"
-                  "ms_per_frame_median\n";
+                  "ms_per_frame_median";
+  for (const char* column : kStageColumns) out.stream() << ',' << column << "_median";
+  out.stream() << '\n';
   for (const auto& r : rows) {
     const auto ate = [&](double AteStats::*field) {
       return r.ate ? fmt::format("{}", (*r.ate).*field) : std::string();
     };
-    out.stream() << fmt::format("{},{},{},{},{},{},{},{},{},{},{}\n", csvField(r.dataset),
+    out.stream() << fmt::format("{},{},{},{},{},{},{},{},{},{},{}", csvField(r.dataset),
                                 csvField(r.config), r.run, csvField(r.status), cell(r.frames),
                                 cell(r.tracked), ate(&AteStats::rmse), ate(&AteStats::mean),
                                 ate(&AteStats::median), ate(&AteStats::std),
                                 cell(r.ms_per_frame_median));
+    for (const char* column : kStageColumns) out.stream() << ',' << cell(stageOf(r, column));
+    out.stream() << '\n';
   }
   out.commit();
 }
@@ -91,7 +126,8 @@ void writeResultsJson(const std::vector<ResultRow>& rows, const std::filesystem:
                      {"frames", orNull(r.frames)},
                      {"tracked", orNull(r.tracked)},
                      {"ate", ate},
-                     {"ms_per_frame_median", orNull(r.ms_per_frame_median)}});
+                     {"ms_per_frame_median", orNull(r.ms_per_frame_median)},
+                     {"stage_ms_median", r.stage_ms_median}});
   }
   io::OutputFile out(file);
   out.stream() << nlohmann::json{{"runs", table}}.dump(2) << '\n';

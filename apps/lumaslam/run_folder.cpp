@@ -44,7 +44,8 @@ void requireSummaryKeys(const nlohmann::json& summary, const std::filesystem::pa
   }
 }
 
-// The table, or the problem found in the file.
+}  // namespace
+
 std::variant<TimingTable, std::string> readTimingTable(const std::filesystem::path& file) {
   std::ifstream in(file);
   if (!in) return file.string() + ": not found";
@@ -63,8 +64,6 @@ std::variant<TimingTable, std::string> readTimingTable(const std::filesystem::pa
   }
   return table;
 }
-
-}  // namespace
 
 bool TimingTable::has(std::string_view column) const {
   return std::find(columns.begin(), columns.end(), column) != columns.end();

@@ -6,6 +6,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <variant>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -22,6 +23,10 @@ struct TimingTable {
   std::vector<std::string> texts(std::string_view column) const;
   std::vector<double> numbers(std::string_view column) const;
 };
+
+// timing.csv (any file of its layout), or the problem found in it (missing, empty, a line
+// with another number of fields than the header).
+std::variant<TimingTable, std::string> readTimingTable(const std::filesystem::path& file);
 
 struct RunFolder {
   std::filesystem::path dir;
