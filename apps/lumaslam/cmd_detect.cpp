@@ -1,6 +1,8 @@
 // `lumaslam detect`: run the dynamic-object detector on an image, a folder of images or a
 // video (through the asynchronous DetectionWorker, with its stride), print the boxes, write
-// annotated images; or, with --evaluate, measure recall/precision against labelled boxes.
+// annotated images; or, with --evaluate, measure recall/precision against labelled boxes:
+// single images (box list, VOC folder) or a TUM-layout sequence with its detections.txt,
+// detected every stride-th frame and propagated in between as the SLAM pipeline does.
 #include <algorithm>
 #include <cctype>
 #include <cstdio>
@@ -11,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include <fmt/format.h>
 #include <spdlog/spdlog.h>
 #include <CLI/CLI.hpp>
 #include <opencv2/imgcodecs.hpp>
@@ -21,6 +24,7 @@
 #include "command_registry.h"
 #include "lumaslam/core/error.h"
 #include "lumaslam/core/settings_file.h"
+#include "lumaslam/detect/box_file_detector.h"
 #include "lumaslam/detect/box_labels.h"
 #include "lumaslam/detect/detection_eval.h"
 #include "lumaslam/detect/detection_worker.h"
@@ -28,6 +32,7 @@
 #include "lumaslam/detect/dynamic_mask.h"
 #include "lumaslam/enhance/enhancer.h"
 #include "lumaslam/feature/orb_extractor.h"
+#include "lumaslam/io/dataset_reader.h"
 
 namespace {
 
@@ -273,9 +278,103 @@ int runEvaluation(const DetectOptions& options) {
   return 0;
 }
 
+// A TUM-layout sequence folder for INPUT "tum:D" or a folder D holding rgb.txt.
+std::optional<fs::path> sequenceFolder(const std::string& input) {
+  if (input.rfind("tum:", 0) == 0) return fs::path(input.substr(4));
+  if (!input.empty() && fs::is_directory(input) && fs::exists(fs::path(input) / "rgb.txt"))
+    return fs::path(input);
+  return std::nullopt;
+}
+
+// The truth boxes per frame timestamp: a detections.txt ("timestamp class x y w h"), read by
+// the box-file detector (same parser and errors as `run --detector boxes:FILE`).
+detect::BoxFileDetector truthBoxes(const DetectOptions& options,
+                                   const detect::DetectorParams& params) {
+  if (fs::is_directory(options.evaluate))
+    fail("{}: a sequence is evaluated against a box file (its detections.txt), not a folder",
+         options.evaluate);
+  detect::DetectorParams truth;
+  truth.type = "box_file";
+  truth.box_file = options.evaluate;
+  truth.box_file_tolerance = 0.005;  // the generator writes the image's own timestamp
+  truth.classes = params.classes;
+  return detect::BoxFileDetector(truth);
+}
+
+struct SequenceTotals {
+  detect::MatchCounts counts;
+  int frames = 0, detected_frames = 0, truth_boxes = 0;
+  double all_ms = 0.0, detect_ms = 0.0;
+};
+
+void addFrame(SequenceTotals& totals, const detect::FrameDetections& result,
+              const detect::MatchCounts& counts, std::size_t truth_boxes) {
+  totals.counts += counts;
+  ++totals.frames;
+  totals.truth_boxes += static_cast<int>(truth_boxes);
+  totals.all_ms += result.compute_ms;
+  if (!result.propagated) {
+    ++totals.detected_frames;
+    totals.detect_ms += result.compute_ms;
+  }
+}
+
+void printSequenceSummary(const SequenceTotals& t, const DetectOptions& options, int stride) {
+  std::printf("recall %.3f precision %.3f (tp %d fp %d fn %d, IoU >= %.2f)\n", t.counts.recall(),
+              t.counts.precision(), t.counts.true_positives, t.counts.false_positives,
+              t.counts.false_negatives, options.min_iou);
+  std::printf(
+      "detector %.1f ms per frame (%d frames, propagation included), %.1f ms per detected frame "
+      "(%d frames, stride %d)\n",
+      t.all_ms / std::max(t.frames, 1), t.frames, t.detect_ms / std::max(t.detected_frames, 1),
+      t.detected_frames, stride);
+}
+
+// Recall/precision on a sequence: frames in rgb.txt order through the DetectionWorker in
+// sequential mode (detect every stride-th frame, propagate between), against the truth boxes.
+int runSequenceEvaluation(const DetectOptions& options, const fs::path& folder) {
+  const auto params = paramsFrom(options);
+  auto truth_file = truthBoxes(options, params);
+  io::ReaderOptions reader_options;
+  if (options.max_frames > 0) reader_options.max_frames = options.max_frames;
+  auto reader = io::openDataset("tum-mono:" + folder.string(), reader_options);
+  auto worker_params = detect::WorkerParams::from(params);
+  worker_params.threaded = false;  // as the pipeline in System.sequential
+  detect::DetectionWorker worker(detect::makeDetector(params), worker_params);
+  Preprocessor preprocess(options.enhance_preset);
+  SequenceTotals totals;
+  while (auto frame = reader->next()) {
+    const cv::Mat image = preprocess(frame->image);
+    const auto index = static_cast<std::int64_t>(frame->index);
+    worker.push(index, frame->timestamp, image);
+    const auto result = worker.take(index);
+    const auto truth = detect::boxesOf(truth_file.detect(image, frame->timestamp));
+    const auto counts = detect::matchDetections(truth, result.detections, options.min_iou);
+    addFrame(totals, result, counts, truth.size());
+    const std::string name = frame->image_path.stem().string();
+    std::printf("%s truth %zu detected %zu tp %d fp %d fn %d%s\n", name.c_str(), truth.size(),
+                result.detections.size(), counts.true_positives, counts.false_positives,
+                counts.false_negatives, result.propagated ? " propagated" : "");
+    if (!options.output_dir.empty()) {
+      cv::Mat annotated = image.clone();
+      for (const auto& box : truth) cv::rectangle(annotated, cv::Rect(box), {255, 0, 0}, 2);
+      writeAnnotated(options.output_dir, name + ".jpg", annotated, result.detections);
+    }
+  }
+  if (totals.truth_boxes == 0)
+    fail("{}: no {} box on any frame of {}", options.evaluate, fmt::join(params.classes, "/"),
+         folder.string());
+  printSequenceSummary(totals, options, params.stride);
+  return 0;
+}
+
 int runDetect(const DetectOptions& options) {
   if (!options.output_dir.empty()) fs::create_directories(options.output_dir);
-  if (!options.evaluate.empty()) return runEvaluation(options);
+  if (!options.evaluate.empty()) {
+    if (const auto folder = sequenceFolder(options.input))
+      return runSequenceEvaluation(options, *folder);
+    return runEvaluation(options);
+  }
   if (options.input.empty())
     fail("detect: give an INPUT (image, folder or video) or --evaluate LABELS");
   const fs::path input = options.input;
@@ -297,7 +396,9 @@ const bool registered = lumaslam::cli::registerCommand(
     "detect", "Detect dynamic objects (people) in images or a video; --evaluate against labels",
     [](CLI::App& cmd) -> lumaslam::cli::Runner {
       auto options = std::make_shared<DetectOptions>();
-      cmd.add_option("INPUT", options->input, "image, folder of images, or video");
+      cmd.add_option("INPUT", options->input,
+                     "image, folder of images, or video; with --evaluate: a TUM-layout "
+                     "sequence (folder with rgb.txt, or tum:PATH)");
       cmd.add_option("--settings", options->settings, "settings file with Detector.* keys");
       cmd.add_option("--model", options->model, "YOLOv5 ONNX model (overrides Detector.model)");
       cmd.add_option("--names", options->names,
@@ -308,12 +409,14 @@ const bool registered = lumaslam::cli::registerCommand(
                      "confidence threshold (objectness * class score)");
       cmd.add_option("--threads", options->threads, "OpenCV threads (cv::setNumThreads)");
       cmd.add_option("--stride", options->stride,
-                     "video: detect every k-th frame, propagate between");
-      cmd.add_option("--max-frames", options->max_frames, "video: stop after this many frames")
+                     "video, sequence: detect every k-th frame, propagate between");
+      cmd.add_option("--max-frames", options->max_frames,
+                     "video, sequence: stop after this many frames")
           ->check(lumaslam::cli::wholeNumber(0, 1'000'000'000));
       cmd.add_option("--output", options->output_dir, "write annotated images into this folder");
       cmd.add_option("--evaluate", options->evaluate,
-                     "box-list file or folder of VOC .xml: print recall/precision");
+                     "box-list file or folder of VOC .xml: print recall/precision; for a "
+                     "sequence INPUT its detections.txt (timestamp class x y w h)");
       cmd.add_option("--images", options->image_dirs,
                      "--evaluate: image folder(s) (box list: root of its paths)");
       cmd.add_option("--iou", options->min_iou, "--evaluate: IoU for a hit")
