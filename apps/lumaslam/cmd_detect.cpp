@@ -330,6 +330,26 @@ void printSequenceSummary(const SequenceTotals& t, const DetectOptions& options,
       t.detected_frames, stride);
 }
 
+// The worker as the pipeline runs it with System.sequential: no thread, Detector.stride.
+detect::DetectionWorker sequentialWorker(const detect::DetectorParams& params) {
+  auto worker_params = detect::WorkerParams::from(params);
+  worker_params.threaded = false;
+  return detect::DetectionWorker(detect::makeDetector(params), worker_params);
+}
+
+// One frame's line "NAME truth T detected D tp fp fn [propagated]" and annotated image.
+void reportFrame(const DetectOptions& options, const std::string& name, const cv::Mat& image,
+                 const std::vector<cv::Rect2f>& truth, const detect::FrameDetections& result,
+                 const detect::MatchCounts& counts) {
+  std::printf("%s truth %zu detected %zu tp %d fp %d fn %d%s\n", name.c_str(), truth.size(),
+              result.detections.size(), counts.true_positives, counts.false_positives,
+              counts.false_negatives, result.propagated ? " propagated" : "");
+  if (options.output_dir.empty()) return;
+  cv::Mat annotated = image.clone();
+  for (const auto& box : truth) cv::rectangle(annotated, cv::Rect(box), {255, 0, 0}, 2);
+  writeAnnotated(options.output_dir, name + ".jpg", annotated, result.detections);
+}
+
 // Recall/precision on a sequence: frames in rgb.txt order through the DetectionWorker in
 // sequential mode (detect every stride-th frame, propagate between), against the truth boxes.
 int runSequenceEvaluation(const DetectOptions& options, const fs::path& folder) {
@@ -338,9 +358,7 @@ int runSequenceEvaluation(const DetectOptions& options, const fs::path& folder) 
   io::ReaderOptions reader_options;
   if (options.max_frames > 0) reader_options.max_frames = options.max_frames;
   auto reader = io::openDataset("tum-mono:" + folder.string(), reader_options);
-  auto worker_params = detect::WorkerParams::from(params);
-  worker_params.threaded = false;  // as the pipeline in System.sequential
-  detect::DetectionWorker worker(detect::makeDetector(params), worker_params);
+  auto worker = sequentialWorker(params);
   Preprocessor preprocess(options.enhance_preset);
   SequenceTotals totals;
   while (auto frame = reader->next()) {
@@ -351,15 +369,7 @@ int runSequenceEvaluation(const DetectOptions& options, const fs::path& folder) 
     const auto truth = detect::boxesOf(truth_file.detect(image, frame->timestamp));
     const auto counts = detect::matchDetections(truth, result.detections, options.min_iou);
     addFrame(totals, result, counts, truth.size());
-    const std::string name = frame->image_path.stem().string();
-    std::printf("%s truth %zu detected %zu tp %d fp %d fn %d%s\n", name.c_str(), truth.size(),
-                result.detections.size(), counts.true_positives, counts.false_positives,
-                counts.false_negatives, result.propagated ? " propagated" : "");
-    if (!options.output_dir.empty()) {
-      cv::Mat annotated = image.clone();
-      for (const auto& box : truth) cv::rectangle(annotated, cv::Rect(box), {255, 0, 0}, 2);
-      writeAnnotated(options.output_dir, name + ".jpg", annotated, result.detections);
-    }
+    reportFrame(options, frame->image_path.stem().string(), image, truth, result, counts);
   }
   if (totals.truth_boxes == 0)
     fail("{}: no {} box on any frame of {}", options.evaluate, fmt::join(params.classes, "/"),
