@@ -18,7 +18,8 @@ packages=(
   parallel               # GNU parallel: `lumaslam experiment --emit parallel` jobs (and its test)
 )
 if [[ "${1:-}" == "--fuzz" ]]; then
-  packages+=(clang libclang-rt-dev)  # libFuzzer's runtime is in libclang-rt, not in clang
+  # libFuzzer's runtime is in libclang-rt, not in clang; `make fuzz` configures with -G Ninja
+  packages+=(clang libclang-rt-dev ninja-build)
 elif [[ $# -gt 0 ]]; then
   echo "install-deps: unknown option '$1' (known: --fuzz)" >&2
   exit 2
