@@ -84,8 +84,10 @@ TEST(SettingsFile, TopLevelThatIsNoMapIsAClearError) {
   }
 }
 
-TEST(SettingsFile, StdExceptionOfOpenCvsParserIsAClearError) {
-  // Found by fuzz/settings_fuzz.cpp: these bytes make cv::FileStorage throw std::length_error.
+TEST(SettingsFile, BytesThatMadeOpenCvsParserThrowAreAClearError) {
+  // Found by fuzz/settings_fuzz.cpp: these bytes made cv::FileStorage throw std::length_error
+  // (caught as "not a valid settings file (basic_string::_M_create)"). They are not UTF-8, so
+  // they are now refused before OpenCV reads them; the catch stays for any other such input.
   const auto file = std::filesystem::path(LUMASLAM_SOURCE_DIR) /
                     "fuzz/regressions/settings/opencv_parser_length_error.yaml";
   try {
@@ -93,7 +95,7 @@ TEST(SettingsFile, StdExceptionOfOpenCvsParserIsAClearError) {
     FAIL() << "no error";
   } catch (const Error& e) {
     const std::string expected =
-        file.string() + ": not a valid settings file (basic_string::_M_create)";
+        file.string() + ": line 7: not UTF-8 text (byte 0xbc at column 1); YAML files are text";
     EXPECT_EQ(std::string(e.what()), expected);
   }
 }
@@ -219,5 +221,24 @@ TEST(SettingsFile, DocumentMarkerWithTextIsRefusedBeforeOpenCvsParserLoops) {
             "or end the line");
   // The marker alone, with blanks or a comment, is YAML as ORB-SLAM3 files write it.
   const auto s = SettingsFile::fromString("%YAML:1.0\n---  # settings\nCamera.fx: 535.4\n");
+  EXPECT_DOUBLE_EQ(s.get<double>("Camera.fx"), 535.4);
+}
+
+// OpenCV 4.6's YAML parser also never returns on some inputs with bytes that are not UTF-8
+// (found by fuzzing settings files and EuRoC sensor.yaml, fuzz/regressions/): such text, and
+// NUL bytes, are refused first, naming the line, the byte and its column. UTF-8 passes.
+TEST(SettingsFile, BytesThatAreNotUtf8AreRefusedBeforeOpenCvsParserLoops) {
+  EXPECT_EQ(errorOf("%oT\xa5"
+                    "9,\n    -\xf3\xff\xff"
+                    "an\n\x90\n.n"),
+            "settings.yaml: line 1: not UTF-8 text (byte 0xa5 at column 4); YAML files are text");
+  EXPECT_EQ(errorOf("Camera.fx: 1\nCamera.fy: 2\xff\n"),
+            "settings.yaml: line 2: not UTF-8 text (byte 0xff at column 13); YAML files are text");
+  EXPECT_EQ(errorOf(std::string("Camera.fx: 1\n\0\n", 15)),
+            "settings.yaml: line 2: not UTF-8 text (byte 0x00 at column 1); YAML files are text");
+  EXPECT_EQ(errorOf("Camera.fx: 1 # \xc3\n"),  // a lead byte without its continuation
+            "settings.yaml: line 1: not UTF-8 text (byte 0xc3 at column 16); YAML files are text");
+  const auto s =
+      SettingsFile::fromString("Camera.fx: 535.4  # Brennweite f\xc3\xbcr x, \xe2\x82\xac\n");
   EXPECT_DOUBLE_EQ(s.get<double>("Camera.fx"), 535.4);
 }

@@ -47,6 +47,7 @@ std::string withoutComments(const std::string& yaml) {
 
 cv::FileStorage openPlan(const std::filesystem::path& file) {
   std::string yaml = withoutComments(core::readWholeFile(file, "plan file"));
+  core::requireUtf8Text(yaml, file.string());
   core::requireBlankAfterDocumentMarkers(yaml, file.string());
   // cv::FileStorage needs the header that hand-written files usually leave out.
   if (!yaml.starts_with("%YAML")) yaml = "%YAML:1.0\n" + yaml;

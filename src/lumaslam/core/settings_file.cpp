@@ -118,6 +118,7 @@ SettingsFile SettingsFile::fromString(const std::string& yaml, const std::string
   if (text.starts_with(kUtf8Bom)) text.erase(0, kUtf8Bom.size());
   std::map<std::string, KeyLine> key_lines;
   if (isYaml(text)) {
+    requireUtf8Text(text, origin);
     requireBlankAfterDocumentMarkers(text, origin);
     key_lines = scanKeyLines(text, origin);
   }

@@ -165,4 +165,51 @@ void requireBlankAfterDocumentMarkers(std::string_view text, const std::string& 
   }
 }
 
+namespace {
+
+// Bytes a UTF-8 sequence starting with `lead` takes (0: not a lead byte; C0/C1 and F5-FF never
+// appear in UTF-8).
+int utf8Length(unsigned char lead) {
+  if (lead < 0x80) return 1;
+  if (lead >= 0xC2 && lead <= 0xDF) return 2;
+  if (lead >= 0xE0 && lead <= 0xEF) return 3;
+  if (lead >= 0xF0 && lead <= 0xF4) return 4;
+  return 0;
+}
+
+bool isContinuation(unsigned char byte) {
+  return (byte & 0xC0) == 0x80;
+}
+
+// Length of the valid UTF-8 sequence at `at`, or 0.
+std::size_t validSequenceAt(std::string_view text, std::size_t at) {
+  const auto lead = static_cast<unsigned char>(text[at]);
+  if (lead == 0) return 0;
+  const auto length = static_cast<std::size_t>(utf8Length(lead));
+  if (length == 0 || at + length > text.size()) return 0;
+  for (std::size_t k = 1; k < length; ++k) {
+    if (!isContinuation(static_cast<unsigned char>(text[at + k]))) return 0;
+  }
+  return length;
+}
+
+}  // namespace
+
+void requireUtf8Text(std::string_view text, const std::string& origin) {
+  int line = 1;
+  std::size_t line_start = 0;
+  for (std::size_t at = 0; at < text.size();) {
+    const std::size_t length = validSequenceAt(text, at);
+    if (length == 0) {
+      fail("{}: line {}: not UTF-8 text (byte 0x{:02x} at column {}); YAML files are text", origin,
+           line, static_cast<unsigned char>(text[at]), at - line_start + 1);
+    }
+    if (text[at] == '\n') {
+      ++line;
+      line_start = at + 1;
+    }
+    at += length;
+  }
+}
+
 }  // namespace lumaslam::core

@@ -27,4 +27,10 @@ std::map<std::string, KeyLine> scanKeyLines(std::string_view text, const std::st
 // starts with "---" directly followed by anything but a blank.
 void requireBlankAfterDocumentMarkers(std::string_view text, const std::string& origin);
 
+// Before cv::FileStorage reads `text`: YAML is Unicode text, and OpenCV 4.6's YAML parser never
+// returns on some inputs with bytes that are not UTF-8 (found by fuzzing settings files and
+// EuRoC sensor.yaml, fuzz/regressions/). Throws Error "ORIGIN: line N: not UTF-8 text (byte
+// 0xXX at column C)" for a NUL byte or a byte sequence that is not UTF-8.
+void requireUtf8Text(std::string_view text, const std::string& origin);
+
 }  // namespace lumaslam::core
