@@ -8,17 +8,12 @@
 #include <nlohmann/json.hpp>
 
 #include "lumaslam/core/error.h"
+#include "lumaslam/eval/error_stats.h"
 #include "lumaslam/io/output_file.h"
 #include "run_folder.h"
 
 namespace lumaslam::cli {
 namespace {
-
-double median(std::vector<double> values) {
-  std::sort(values.begin(), values.end());
-  const std::size_t n = values.size();
-  return n % 2 == 1 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
-}
 
 // Medians over frames of the stage columns of a run's timing.csv (none when it is unreadable).
 std::map<std::string, double> stageMedians(const std::filesystem::path& timing_csv) {
@@ -29,7 +24,7 @@ std::map<std::string, double> stageMedians(const std::filesystem::path& timing_c
   for (const char* column : kStageColumns) {
     if (!table->has(column)) continue;
     try {
-      medians[column] = median(table->numbers(column));
+      medians[column] = eval::computeStats(table->numbers(column)).median;
     } catch (const Error&) {  // a field that is not a number: no median for the column
     }
   }
