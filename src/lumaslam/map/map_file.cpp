@@ -9,13 +9,14 @@
 #include <unordered_map>
 #include <unordered_set>
 
-#include <cereal/archives/portable_binary.hpp>
 #include <fmt/format.h>
+#include <cereal/archives/portable_binary.hpp>
 
 #include "lumaslam/core/checksum.h"
 #include "lumaslam/core/error.h"
 #include "lumaslam/core/read_file.h"
 #include "lumaslam/io/output_file.h"
+#include "lumaslam/map/map_file_checks.h"
 #include "lumaslam/map/map_file_records.h"
 
 namespace lumaslam::map {
@@ -52,9 +53,8 @@ FeatureRecord recordOf(const FeatureSet& features) {
   }
   r.u_right = features.u_right;
   r.depth = features.depth;
-  const cv::Mat descriptors = features.descriptors.isContinuous()
-                                  ? features.descriptors
-                                  : features.descriptors.clone();
+  const cv::Mat descriptors =
+      features.descriptors.isContinuous() ? features.descriptors : features.descriptors.clone();
   r.descriptors.assign(descriptors.datastart, descriptors.dataend);
   r.moving = features.moving;
   if (features.grid) {
@@ -201,8 +201,8 @@ std::string_view checkedPayload(const std::string& bytes, const std::string& nam
   core::Checksum checksum;
   checksum.update(payload.data(), payload.size());
   if (checksum.value() != header.checksum) {
-    fail("{}: checksum mismatch (stored {:016x}, computed {:016x}): the map file is corrupt",
-         name, header.checksum, checksum.value());
+    fail("{}: checksum mismatch (stored {:016x}, computed {:016x}): the map file is corrupt", name,
+         header.checksum, checksum.value());
   }
   return payload;
 }
@@ -225,65 +225,6 @@ Decoded decode(const std::string& bytes, const std::string& name) {
   return decoded;
 }
 
-// ---- checks ------------------------------------------------------------------------------
-
-void checkFeatures(const FeatureRecord& f, const std::string& what) {
-  const std::size_t n = f.x.size();
-  const bool sizes_agree =
-      f.y.size() == n && f.size.size() == n && f.angle.size() == n && f.response.size() == n &&
-      f.octave.size() == n && f.class_id.size() == n && f.undistorted_x.size() == n &&
-      f.undistorted_y.size() == n && f.u_right.size() == n && f.depth.size() == n &&
-      f.descriptors.size() == 32 * n && (f.moving.empty() || f.moving.size() == n);
-  if (!sizes_agree) fail("{}: feature arrays of different lengths", what);
-  // Grids are feature::FeatureGrid's 64 x 48 cells; a corrupt count must not allocate gigabytes.
-  constexpr std::int64_t kMaxGridCells = 1 << 16;
-  const bool no_grid = f.grid_columns == 0 && f.grid_rows == 0;
-  const bool grid_ok =
-      no_grid || (f.grid_columns > 0 && f.grid_rows > 0 &&
-                  std::int64_t{f.grid_columns} * f.grid_rows <= kMaxGridCells &&
-                  std::all_of(f.grid_bounds.begin(), f.grid_bounds.end(),
-                              [](float v) { return std::isfinite(v); }) &&
-                  f.grid_bounds[2] > 0.0F && f.grid_bounds[3] > 0.0F);
-  if (!grid_ok) {
-    fail("{}: feature grid of {}x{} cells over {}x{} pixels (at most {} cells)", what,
-         f.grid_columns, f.grid_rows, f.grid_bounds[2], f.grid_bounds[3], kMaxGridCells);
-  }
-}
-
-void checkStructure(const MapRecord& r, const std::string& name) {
-  std::unordered_map<Id, std::size_t> feature_counts;
-  std::unordered_set<Id> points;
-  for (const auto& k : r.keyframes) {
-    const std::string what = fmt::format("{}: keyframe {}", name, k.id);
-    checkFeatures(k.features, what);
-    if (k.points.size() != k.features.x.size()) fail("{}: {} point slots", what, k.points.size());
-    if (!feature_counts.emplace(k.id, k.features.x.size()).second) fail("{} twice", what);
-  }
-  for (const auto& p : r.points) {
-    if (!points.insert(p.id).second) fail("{}: map point {} twice", name, p.id);
-    for (const auto& [keyframe, index] : p.observations) {
-      const auto it = feature_counts.find(keyframe);
-      if (it == feature_counts.end() || index < 0 || static_cast<std::size_t>(index) >= it->second)
-        fail("{}: map point {} observed by unknown feature {} of keyframe {}", name, p.id, index,
-             keyframe);
-    }
-  }
-  const auto known = [&](Id id) { return feature_counts.contains(id); };
-  for (const auto& k : r.keyframes) {
-    for (const Id id : k.points) {
-      if (id != kNoId && !points.contains(id))
-        fail("{}: keyframe {} refers to unknown map point {}", name, k.id, id);
-    }
-    const bool graph_known =
-        std::all_of(k.connections.begin(), k.connections.end(),
-                    [&](const auto& c) { return known(c.first); }) &&
-        (k.parent == kNoId || known(k.parent)) &&
-        std::all_of(k.children.begin(), k.children.end(), known) &&
-        std::all_of(k.loop_edges.begin(), k.loop_edges.end(), known);
-    if (!graph_known) fail("{}: keyframe {} is linked to an unknown keyframe", name, k.id);
-  }
-}
-
 // ---- records -> map ----------------------------------------------------------------------
 
 std::shared_ptr<FeatureSet> featuresFrom(const FeatureRecord& r) {
@@ -303,8 +244,7 @@ std::shared_ptr<FeatureSet> featuresFrom(const FeatureRecord& r) {
   if (n > 0) std::memcpy(features->descriptors.data, r.descriptors.data(), r.descriptors.size());
   features->moving = r.moving;
   if (r.grid_columns > 0 && r.grid_rows > 0) {
-    const cv::Rect2f bounds(r.grid_bounds[0], r.grid_bounds[1], r.grid_bounds[2],
-                            r.grid_bounds[3]);
+    const cv::Rect2f bounds(r.grid_bounds[0], r.grid_bounds[1], r.grid_bounds[2], r.grid_bounds[3]);
     features->grid = std::make_shared<const feature::FeatureGrid>(
         std::move(undistorted_keypoints), bounds, r.grid_columns, r.grid_rows);
   }
@@ -329,9 +269,8 @@ KeyFrames keyFramesFrom(const MapRecord& r,
   for (const auto& k : r.keyframes) {
     const CameraIntrinsics intrinsics{k.intrinsics[0], k.intrinsics[1], k.intrinsics[2],
                                       k.intrinsics[3], k.intrinsics[4]};
-    auto keyframe =
-        std::make_shared<KeyFrame>(k.id, k.frame_index, k.timestamp, poseFrom(k.T_c_w),
-                                   featuresFrom(k.features), pyramid, intrinsics);
+    auto keyframe = std::make_shared<KeyFrame>(k.id, k.frame_index, k.timestamp, poseFrom(k.T_c_w),
+                                               featuresFrom(k.features), pyramid, intrinsics);
     keyframe->setMapId(k.map_id);
     keyframes.emplace(k.id, std::move(keyframe));
   }
@@ -349,8 +288,7 @@ MapPoints mapPointsFrom(const MapRecord& r, const KeyFrames& keyframes) {
       point->addObservation(keyframes.at(keyframe), index);
     }
     point->restoreDerivedState({Eigen::Vector3d(p.normal[0], p.normal[1], p.normal[2]),
-                                p.min_distance, p.max_distance, p.descriptor, p.visible,
-                                p.found});
+                                p.min_distance, p.max_distance, p.descriptor, p.visible, p.found});
     points.emplace(p.id, std::move(point));
   }
   return points;
@@ -386,8 +324,8 @@ std::string describe(double map_value, double run_value) {
 std::vector<std::string> MapFingerprint::differences(const MapFingerprint& run) const {
   std::vector<std::string> result;
   const auto compare = [&](const char* what, double map_value, double run_value) {
-    if (map_value != run_value) result.push_back(fmt::format("{}: {}", what,
-                                                             describe(map_value, run_value)));
+    if (map_value != run_value)
+      result.push_back(fmt::format("{}: {}", what, describe(map_value, run_value)));
   };
   if (sensor != run.sensor) {
     result.push_back(fmt::format("sensor: map {}, this run {}", sensor, run.sensor));
@@ -405,10 +343,10 @@ std::vector<std::string> MapFingerprint::differences(const MapFingerprint& run) 
   compare("ORBextractor.iniThFAST", orb_ini_fast, run.orb_ini_fast);
   compare("ORBextractor.minThFAST", orb_min_fast, run.orb_min_fast);
   if (vocabulary != run.vocabulary) {
-    result.push_back(fmt::format(
-        "vocabulary: map {} ({:016x}), this run {} ({:016x})",
-        vocabulary_name.empty() ? "none" : vocabulary_name, vocabulary,
-        run.vocabulary_name.empty() ? "none" : run.vocabulary_name, run.vocabulary));
+    result.push_back(fmt::format("vocabulary: map {} ({:016x}), this run {} ({:016x})",
+                                 vocabulary_name.empty() ? "none" : vocabulary_name, vocabulary,
+                                 run.vocabulary_name.empty() ? "none" : run.vocabulary_name,
+                                 run.vocabulary));
   }
   return result;
 }
@@ -432,7 +370,7 @@ void loadMapFile(const std::filesystem::path& file, const MapFingerprint& run,
     for (const auto& d : differences) lines += "\n  " + d;
     fail("{}: the map was made with other settings than this run's:{}", name, lines);
   }
-  checkStructure(decoded.record, name);
+  checkMapRecord(decoded.fingerprint, decoded.record, name);
   const auto keyframes = keyFramesFrom(decoded.record, pyramid);
   const auto points = mapPointsFrom(decoded.record, keyframes);
   linkKeyFrames(decoded.record, keyframes, points);
@@ -443,7 +381,7 @@ MapFileInfo readMapFileInfo(const std::filesystem::path& file) {
   const std::string name = file.string();
   const std::string bytes = core::readWholeFile(file, "map file");
   const Decoded decoded = decode(bytes, name);
-  checkStructure(decoded.record, name);
+  checkMapRecord(decoded.fingerprint, decoded.record, name);
   MapFileInfo info;
   info.version = kMapFileVersion;
   info.bytes = bytes.size();
