@@ -115,30 +115,41 @@ void saveMapPeriodically(Pipeline& system, const RunOptions& options, std::size_
   }
 }
 
-FrameLoop trackFrames(io::DatasetReader& reader, Pipeline& system, io::OutputFile& timing,
-                      const RunOptions& options, const StopOnSignal& stop, viewer::Viewer* viewer) {
+// The next frame that can be read; nullopt at the end of the dataset, on a signal, or when a bad
+// frame stops the run (loop.status says so).
+std::optional<io::FrameData> readGoodFrame(io::DatasetReader& reader, FrameLoop& loop,
+                                           const RunOptions& options, const StopOnSignal& stop) {
   constexpr std::size_t kMaxUnreadableInARow = 100;  // a reader that cannot go on
-  ProgressLine progress("frame", reader.size());
-  FrameLoop loop;
-  std::size_t unreadable_in_a_row = 0;
-  while (!stop.requested()) {
-    if (viewer) viewer->waitWhilePaused([&stop] { return stop.requested(); });
-    if (stop.requested()) break;
-    std::optional<io::FrameData> frame;
+  for (std::size_t unreadable_in_a_row = 0; !stop.requested();) {
     try {
-      frame = reader.next();
+      return reader.next();
     } catch (const Error& e) {
-      if (!recordBadFrame(loop, e.what(), options)) break;
+      if (!recordBadFrame(loop, e.what(), options)) return std::nullopt;
       if (++unreadable_in_a_row >= kMaxUnreadableInARow) {
         spdlog::error("{} unreadable frames in a row: stopping", unreadable_in_a_row);
         loop.status = "stopped at a bad frame";
         loop.exit_code = 1;
-        break;
+        return std::nullopt;
       }
-      continue;
     }
-    if (!frame) break;
-    unreadable_in_a_row = 0;
+  }
+  return std::nullopt;
+}
+
+// Reads one frame ahead: each frame goes to Pipeline::prepareAhead when it is read, before the
+// frame before it is tracked, so that its detection overlaps that frame's tracking.
+FrameLoop trackFrames(io::DatasetReader& reader, Pipeline& system, io::OutputFile& timing,
+                      const RunOptions& options, const StopOnSignal& stop, viewer::Viewer* viewer) {
+  ProgressLine progress("frame", reader.size());
+  FrameLoop loop;
+  std::optional<io::FrameData> next = readGoodFrame(reader, loop, options, stop);
+  if (next) system.prepareAhead(toSensorFrame(*next));
+  while (next && !stop.requested()) {
+    if (viewer) viewer->waitWhilePaused([&stop] { return stop.requested(); });
+    if (stop.requested()) break;
+    std::optional<io::FrameData> frame = std::move(next);
+    next = readGoodFrame(reader, loop, options, stop);
+    if (next) system.prepareAhead(toSensorFrame(*next));
     FrameResult result;
     try {
       result = system.track(toSensorFrame(*frame));

@@ -354,6 +354,54 @@ cv::Mat Pipeline::extractionMask(const cv::Mat& given) const {
   return both;
 }
 
+// Monocular / RGB-D: enhanced images and depth in metres, the detector's image pushed.
+Pipeline::PreparedFrame Pipeline::prepareFrame(const SensorFrame& input, FrameTiming& timing) {
+  // Depth first: a frame refused for its depth must not reach the (stateful) enhancer.
+  cv::Mat depth_m = settings_.sensor == io::SensorType::Rgbd ? depthInMetres(input) : cv::Mat();
+  PreparedFrame prepared{input.index, prepareImages(input.image, timing), std::move(depth_m), 0.0};
+  pushForDetection(input, prepared.images.detector);
+  return prepared;
+}
+
+void Pipeline::prepareAhead(const SensorFrame& next) {
+  if (!detector_ || settings_.sensor == io::SensorType::Stereo || shut_down_) return;
+  constexpr std::size_t kMaxAhead = 2;  // the frame tracked next and the one after it
+  const bool in_order = ahead_.empty() || next.index > ahead_.back().index;
+  if (ahead_.size() >= kMaxAhead || !in_order) return;
+  try {
+    FrameTiming timing;
+    ahead_.push_back(prepareFrame(atWorkingSize(next, settings_.camera), timing));
+    ahead_.back().enhance_ms = timing.enhance;
+  } catch (const Error&) {
+    // not pushed: track() of this frame refuses it with the same message
+  }
+}
+
+// The frame prepareAhead() prepared, or prepared now. Prepared frames before this one (the
+// caller skipped them) have their detections taken and dropped, so none is left pending.
+Pipeline::PreparedFrame Pipeline::preparedFrame(const SensorFrame& input, FrameTiming& timing) {
+  while (!ahead_.empty() && ahead_.front().index < input.index) {
+    const auto skipped = static_cast<std::int64_t>(ahead_.front().index);
+    ahead_.pop_front();
+    try {
+      detector_->take(skipped);
+    } catch (const Error&) {
+    }
+  }
+  if (!ahead_.empty() && ahead_.front().index == input.index) {
+    PreparedFrame prepared = std::move(ahead_.front());
+    ahead_.pop_front();
+    timing.enhance += prepared.enhance_ms;
+    timing.enhance_ahead = prepared.enhance_ms;
+    return prepared;
+  }
+  if (!ahead_.empty()) {
+    fail("frame {} tracked after frame {} was prepared ahead (indices must increase)", input.index,
+         ahead_.front().index);
+  }
+  return prepareFrame(input, timing);
+}
+
 void Pipeline::pushForDetection(const SensorFrame& input, const cv::Mat& detector_image) {
   if (detector_) {
     detector_->push(static_cast<std::int64_t>(input.index), input.timestamp, detector_image);
@@ -420,15 +468,12 @@ FrameResult Pipeline::track(const SensorFrame& sensor_input) {
   if (settings_.sensor == io::SensorType::Stereo) {
     frame = buildStereoFrame(input, result);
   } else {
-    const auto images = prepareImages(input.image, result.timing);
-    const cv::Mat depth_m =
-        settings_.sensor == io::SensorType::Rgbd ? depthInMetres(input) : cv::Mat();
-    pushForDetection(input, images.detector);
-    result.feature_image = images.gray;
-    frame = withoutDynamicFeatures(input, depth_m, result, [&] {
+    const PreparedFrame prepared = preparedFrame(input, result.timing);
+    result.feature_image = prepared.images.gray;
+    frame = withoutDynamicFeatures(input, prepared.depth_m, result, [&] {
       const auto stage = Clock::now();
-      auto built = frame_builder_->build(input.index, input.timestamp, images.gray, depth_m,
-                                         extractionMask(input.dynamic_mask));
+      auto built = frame_builder_->build(input.index, input.timestamp, prepared.images.gray,
+                                         prepared.depth_m, extractionMask(input.dynamic_mask));
       result.timing.features = msSince(stage);
       return built;
     });
@@ -453,7 +498,7 @@ FrameResult Pipeline::track(const SensorFrame& sensor_input) {
     waitForBusyMapper(input.timestamp, start);
   }
   result.timing.mapping = msSince(stage);
-  result.timing.total = msSince(start);
+  result.timing.total = msSince(start) + result.timing.enhance_ahead;
   previous_timestamp_ = input.timestamp;
   previous_dynamic_mask_ = result.dynamic_mask;
   return result;

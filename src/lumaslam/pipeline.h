@@ -4,6 +4,7 @@
 // closer and the detection worker (own threads, or inline when System.sequential, which also
 // runs the per-frame side jobs inline). Not installed: embed lumaslam through system.h.
 #include <chrono>
+#include <deque>
 #include <filesystem>
 #include <functional>
 #include <map>
@@ -66,6 +67,7 @@ struct FrameTiming {  // milliseconds
   double enhance = 0, features = 0, tracking = 0, mapping = 0, total = 0;
   double detection_wait = 0;  // tracking thread blocked on this frame's boxes
   double detection = 0;       // detector thread's work on this frame (inference or propagation)
+  double enhance_ahead = 0;   // the part of `enhance` done by prepareAhead(), before track()
 };
 
 // One frame as the sensor delivered it. Which fields are needed depends on Settings::sensor.
@@ -111,6 +113,15 @@ class Pipeline {
   // the work of both images (the right one runs beside the left), `features` the rest of the
   // front end (rectification, both extractions, stereo matching) in wall time.
   FrameResult track(const SensorFrame& frame);
+
+  // Reading ahead (`lumaslam run`): a coming frame's images are enhanced and handed to the
+  // detector now, so that its detection runs while the frames before it are tracked instead of
+  // while the tracker waits for it; track() of that frame then takes them. At most two frames
+  // ahead, in increasing index order. Monocular and RGB-D with a
+  // detector only (otherwise nothing to overlap). The results are those of tracking without it
+  // (the enhancer sees the same images in the same order); input that track() would refuse is
+  // left for track() to refuse.
+  void prepareAhead(const SensorFrame& next);
 
   // RGB-D shorthand for track().
   FrameResult trackRgbd(std::size_t index, double timestamp, const cv::Mat& image,
@@ -176,6 +187,15 @@ class Pipeline {
     cv::Mat gray;      // for ORB features
     cv::Mat detector;  // for the detector: raw or enhanced colour (Detector.image)
   };
+  // A frame's images and depth, enhanced and pushed to the detector by prepareAhead().
+  struct PreparedFrame {
+    std::size_t index = 0;
+    Images images;
+    cv::Mat depth_m;
+    double enhance_ms = 0.0;
+  };
+  PreparedFrame prepareFrame(const SensorFrame& input, FrameTiming& timing);
+  PreparedFrame preparedFrame(const SensorFrame& input, FrameTiming& timing);
   void finishQueuedMapWork();
   void waitForBusyMapper(double timestamp, std::chrono::steady_clock::time_point frame_start);
   // With `plan`, the image is enhanced with it instead of its own (stereo shared plans).
@@ -211,6 +231,7 @@ class Pipeline {
   bool shut_down_ = false;
   std::optional<double> previous_timestamp_;  // of the last tracked frame (any outcome)
   cv::Mat previous_dynamic_mask_;     // the last frame's mask from its boxes (extraction budget)
+  std::deque<PreparedFrame> ahead_;   // prepareAhead()'s frames, until track() takes them
   bool wait_for_busy_mapper_ = true;  // TrackerParams::wait_for_busy_mapper
   std::unique_ptr<track::FrameBuilder> frame_builder_;
   std::unique_ptr<mapping::LocalMapper> mapper_;
