@@ -722,6 +722,13 @@ void Tracker::excludeMovingPoints(TrackingOutcome& outcome) {
   const auto start = std::chrono::steady_clock::now();
   const auto verdict = motion_evidence_.update(current_, last_, camera_, *pyramid_);
   outcome.moving_features = static_cast<int>(verdict.moving_features);
+  outcome.moving_points.clear();
+  if (verdict.moving_features > 0) {  // else FeatureSet::moving may be unset
+    const auto& features = *current_.features;
+    for (std::size_t i = 0; i < features.moving.size(); ++i) {
+      if (features.moving[i]) outcome.moving_points.push_back(features.keypoints[i].pt);
+    }
+  }
   bool pose_used_one = false;
   for (const std::size_t i : verdict.dynamic_points) {
     if (!current_.outliers[i]) {

@@ -94,6 +94,7 @@ struct TrackingOutcome {
   TrackingStep step = TrackingStep::None;  // None when lost
   map::MapId map = 0;                      // the map the frame was tracked in (when tracked)
   int moving_features = 0;                 // features the motion test found moving
+  std::vector<cv::Point2f> moving_points;  // where they are (pixels of the tracked image)
   bool keyframe_waits_for_mapper = false;  // a keyframe was due, the mapper was busy
   double motion_evidence_ms = 0.0;         // the motion test's time
 };
