@@ -18,6 +18,7 @@
 #include "lumaslam/loop/loop_closer.h"
 #include "lumaslam/pipeline.h"
 #include "lumaslam/pipeline_params.h"
+#include "moving_features_file.h"
 #include "progress_line.h"
 #include "run_manifest.h"
 #include "run_viewer.h"
@@ -82,6 +83,23 @@ void writeTimingRow(std::ostream& timing, const io::FrameData& frame, const Fram
          << fmt::format("{:.3f}", result.outcome.motion_evidence_ms) << '\n';
 }
 
+// The files written a line per frame as the frames are tracked, committed with the results.
+struct FrameFiles {
+  io::OutputFile timing;
+  MovingFeaturesWriter moving;
+
+  void add(const io::FrameData& frame, const FrameResult& result) {
+    writeTimingRow(timing.stream(), frame, result);
+    timing.flush();
+    moving.add({frame.index, result.kept_features.size() + result.dropped_features.size(),
+                result.dynamic_boxes, result.dropped_features, result.outcome.moving_points});
+  }
+  void commit() {
+    timing.commit();
+    moving.commit();
+  }
+};
+
 // Returns false when the loop must stop here (a bad frame with --on-bad-frame stop).
 bool recordBadFrame(FrameLoop& loop, std::string what, const RunOptions& options) {
   if (options.on_bad_frame == RunOptions::BadFrame::Stop) {
@@ -138,7 +156,7 @@ std::optional<io::FrameData> readGoodFrame(io::DatasetReader& reader, FrameLoop&
 
 // Reads one frame ahead: each frame goes to Pipeline::prepareAhead when it is read, before the
 // frame before it is tracked, so that its detection overlaps that frame's tracking.
-FrameLoop trackFrames(io::DatasetReader& reader, Pipeline& system, io::OutputFile& timing,
+FrameLoop trackFrames(io::DatasetReader& reader, Pipeline& system, FrameFiles& files,
                       const RunOptions& options, const StopOnSignal& stop, viewer::Viewer* viewer) {
   ProgressLine progress("frame", reader.size());
   FrameLoop loop;
@@ -160,8 +178,7 @@ FrameLoop trackFrames(io::DatasetReader& reader, Pipeline& system, io::OutputFil
       }
       continue;
     }
-    writeTimingRow(timing.stream(), *frame, result);
-    timing.flush();
+    files.add(*frame, result);
     loop.dropped_sum += static_cast<double>(result.dropped_features.size());
     loop.moving_sum += result.outcome.moving_features;
     loop.wait_sum += result.timing.detection_wait;
@@ -278,8 +295,8 @@ void evaluateAgainstGroundTruth(io::DatasetReader& reader, const io::Settings& s
 void removeEarlierOutputs(const std::filesystem::path& out) {
   std::error_code ec;
   for (const char* name :
-       {"trajectory.txt", "keyframes.txt", "timing.csv", "summary.json", "evaluation.svg",
-        "repeatability.json", "manifest.json", "report.html"}) {
+       {"trajectory.txt", "keyframes.txt", "timing.csv", kMovingFeaturesFile, "summary.json",
+        "evaluation.svg", "repeatability.json", "manifest.json", "report.html"}) {
     if (std::filesystem::is_regular_file(out / name, ec)) std::filesystem::remove(out / name, ec);
   }
   for (const auto& entry : std::filesystem::directory_iterator(out, ec)) {
@@ -291,6 +308,12 @@ void removeEarlierOutputs(const std::filesystem::path& out) {
 }
 
 namespace {
+
+// The images' size as tracking sees them, the pixels of moving_features.txt.
+cv::Size workingSize(const io::Settings& settings) {
+  const io::ImageSize size = settings.camera.resizeTo.value_or(settings.camera.size);
+  return {size.width, size.height};
+}
 
 std::filesystem::path settingsPathOf(const RunOptions& options) {
   // An unknown dataset KIND is reported before the settings file it would point to.
@@ -353,14 +376,15 @@ int runPipeline(const RunOptions& options) {
   if (options.localization) system.setLocalizationMode(true);
   const std::size_t loaded_keyframes = system.keyFrameCount();
 
-  io::OutputFile timing(options.out / "timing.csv");
-  timing.stream()
+  FrameFiles files{io::OutputFile(options.out / "timing.csv"),
+                   MovingFeaturesWriter(options.out / kMovingFeaturesFile, workingSize(settings))};
+  files.timing.stream()
       << "frame,timestamp,state,inliers,enhance_ms,features_ms,tracking_ms,mapping_ms,total_ms,"
          "detection_wait_ms,detection_ms,boxes,dropped_features,map,step,moving_features,"
          "motion_ms\n";
   const StopOnSignal stop;
   const auto viewer = startViewer(options, system);
-  const FrameLoop loop = trackFrames(*reader, system, timing, options, stop, viewer.get());
+  const FrameLoop loop = trackFrames(*reader, system, files, options, stop, viewer.get());
   if (loop.frames == 0 && loop.exit_code == 0) {
     fail("{}: the dataset delivered no frames", options.dataset);
   }
@@ -377,7 +401,7 @@ int runPipeline(const RunOptions& options) {
   const std::string save_error = saveMapIfAsked(system, options);
   summary["map_file"] = mapFileSummary(options, system, loaded_keyframes, save_error);
   if (viewer) summary["viewer"] = viewerSummary(*viewer, loop.viewer_ms);
-  timing.commit();
+  files.commit();
   std::printf(
       "%s: %zu frames, %zu tracked, %zu lost, %zu skipped, %zu keyframes, %.1f ms/frame "
       "median%s\n",

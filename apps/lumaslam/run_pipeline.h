@@ -1,7 +1,7 @@
 #pragma once
 // The main job shared by `lumaslam run` and `lumaslam demo`: read a dataset, track every
-// frame, write trajectory.txt, keyframes.txt, timing.csv and summary.json into `out`, and
-// evaluate against the dataset's ground truth when it has one.
+// frame, write trajectory.txt, keyframes.txt, timing.csv, moving_features.txt and summary.json
+// into `out`, and evaluate against the dataset's ground truth when it has one.
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -39,8 +39,8 @@ struct RunOptions {
 };
 
 // Removes the files an earlier run left in `out` (trajectory*.txt, keyframes.txt, timing.csv,
-// summary.json, evaluation.svg, repeatability.json, manifest.json, report.html): a folder
-// holds one run's results.
+// moving_features.txt, summary.json, evaluation.svg, repeatability.json, manifest.json,
+// report.html): a folder holds one run's results.
 void removeEarlierOutputs(const std::filesystem::path& out);
 
 // Returns the process exit code: 0, 1 when stopped at a bad frame, 128 + signal when stopped
