@@ -3,7 +3,6 @@
 #include <algorithm>
 
 #include <fmt/format.h>
-#include <opencv2/features2d.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
@@ -13,6 +12,7 @@
 #include "lumaslam/feature/orb_extractor.h"
 #include "lumaslam/io/dataset_reader.h"
 #include "lumaslam/io/settings.h"
+#include "report_frame_marks.h"
 
 namespace lumaslam::cli {
 namespace {
@@ -78,29 +78,53 @@ std::pair<cv::Mat, cv::Mat> asTracked(const cv::Mat& image, const enhance::Enhan
   return {enhanced.gray, enhanced.colour};
 }
 
-// Drawn after the downscale, so that the marks keep their size on a wide image.
-std::string keypointUri(const cv::Mat& colour, std::vector<cv::KeyPoint> keypoints) {
-  const double scale = std::min(1.0, static_cast<double>(kMaxWidth) / colour.cols);
-  cv::Mat scaled = colour;
-  if (scale < 1.0) cv::resize(colour, scaled, cv::Size(), scale, scale, cv::INTER_AREA);
-  for (cv::KeyPoint& keypoint : keypoints) keypoint.pt *= static_cast<float>(scale);
-  cv::Mat canvas;
-  cv::drawKeypoints(scaled, keypoints, canvas, cv::Scalar(0, 255, 0));
-  return jpegDataUri(canvas);
+// The run's moving_features.txt, or why nothing is marked (in `samples`).
+std::optional<MovingFeatures> readMarks(const std::filesystem::path& run_dir,
+                                        SampleFrames& samples) {
+  try {
+    auto marks = readMovingFeatures(run_dir / kMovingFeaturesFile);
+    if (!marks) {
+      samples.unmarked = fmt::format("the run folder has no {} (a run from before it was written)",
+                                     kMovingFeaturesFile);
+    }
+    return marks;
+  } catch (const std::exception& e) {
+    samples.unmarked = e.what();
+    samples.marks_broken = true;
+    return std::nullopt;
+  }
+}
+
+const FrameMarks* marksOf(const std::optional<MovingFeatures>& marks, std::size_t index) {
+  if (!marks) return nullptr;
+  const auto it = marks->frames.find(index);
+  return it == marks->frames.end() ? nullptr : &it->second;
+}
+
+SampleFrame::Marked countsOf(const FrameMarks& marks) {
+  const std::size_t dropped = marks.dropped.size() + marks.moving.size();
+  return {marks.features - dropped, marks.dropped.size(), marks.moving.size(), marks.boxes.size()};
 }
 
 SampleFrame sampleFrame(const Pick& pick, const std::string& dataset,
                         const enhance::EnhancerParams& params,
-                        const feature::OrbExtractor& extractor) {
+                        const feature::OrbExtractor& extractor,
+                        const std::optional<MovingFeatures>& marks) {
   const io::FrameData frame = readFrame(dataset, pick.index);
   const auto [gray, colour] = asTracked(frame.image, params);
   const auto keypoints = extractor.extract(gray).keypoints;
-  return {pick.role,
-          frame.index,
-          frame.timestamp,
-          jpegDataUri(frame.image, kMaxWidth),
-          keypointUri(colour, keypoints),
-          keypoints.size()};
+  const FrameMarks* frame_marks = marksOf(marks, frame.index);
+  const cv::Size marks_image = marks ? marks->image : cv::Size();
+  SampleFrame sample{
+      pick.role,
+      frame.index,
+      frame.timestamp,
+      jpegDataUri(frame.image, kMaxWidth),
+      jpegDataUri(drawFrameMarks(colour, keypoints, frame_marks, marks_image, kMaxWidth)),
+      keypoints.size(),
+      std::nullopt};
+  if (frame_marks) sample.marked = countsOf(*frame_marks);
+  return sample;
 }
 
 std::string base64(const std::vector<uchar>& bytes) {
@@ -136,8 +160,10 @@ std::string jpegDataUri(const cv::Mat& image, int max_width) {
   return "data:image/jpeg;base64," + base64(bytes);
 }
 
-SampleFrames loadSampleFrames(const nlohmann::json& summary, const TimingTable& timing) {
+SampleFrames loadSampleFrames(const std::filesystem::path& run_dir, const nlohmann::json& summary,
+                              const TimingTable& timing) {
   SampleFrames samples;
+  const auto marks = readMarks(run_dir, samples);
   try {
     const auto dataset = summary.at("dataset").get<std::string>();
     const auto settings = io::loadSettings(summary.at("settings").get<std::string>());
@@ -147,7 +173,7 @@ SampleFrames loadSampleFrames(const nlohmann::json& summary, const TimingTable& 
                                               ? feature::OrbSettings::fromSettings(*settings.file)
                                               : feature::OrbSettings{});
     for (const Pick& pick : pickFrames(timing)) {
-      samples.frames.push_back(sampleFrame(pick, dataset, params, extractor));
+      samples.frames.push_back(sampleFrame(pick, dataset, params, extractor, marks));
     }
   } catch (const std::exception& e) {
     samples.problem = e.what();

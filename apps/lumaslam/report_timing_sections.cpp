@@ -1,4 +1,4 @@
-// timingSection, trackingSection and framesSection of report_sections.h.
+// timingSection and trackingSection of report_sections.h.
 #include <algorithm>
 #include <cmath>
 #include <iterator>
@@ -111,26 +111,6 @@ std::string trackingSection(const RunFolder& run) {
   } catch (const std::exception& e) {
     return htmlNote(std::string("No tracking timeline: ") + e.what());
   }
-}
-
-std::string framesSection(const SampleFrames& samples) {
-  std::string html;
-  if (!samples.problem.empty()) html += htmlNote("Sample frames unavailable: " + samples.problem);
-  if (samples.frames.empty()) return html.empty() ? htmlNote("No frame to show.") : html;
-  html += "<p>Read again from the dataset; enhancement preset " + escapeHtml(samples.enhancement) +
-          " applied to each frame on its own (the run's online statistics are not kept), with "
-          "the ORB keypoints extracted from the image tracking sees.</p>\n";
-  for (const SampleFrame& frame : samples.frames) {
-    const std::string caption =
-        fmt::format("{}: frame {}, t = {:.3f} s", frame.role, frame.index, frame.timestamp);
-    html += fmt::format(
-        "<div class=\"sample\">\n<figure><img class=\"raw\" alt=\"raw frame {0}\" src=\"{1}\">"
-        "<figcaption>{2}, raw</figcaption></figure>\n<figure><img class=\"enhanced\" "
-        "alt=\"enhanced frame {0}\" src=\"{3}\"><figcaption>{2}, as tracked, {4} ORB "
-        "keypoints</figcaption></figure>\n</div>\n",
-        frame.index, frame.raw_uri, escapeHtml(caption), frame.enhanced_uri, frame.keypoints);
-  }
-  return html;
 }
 
 }  // namespace lumaslam::cli

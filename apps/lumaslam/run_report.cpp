@@ -22,7 +22,7 @@ std::string titleOf(const nlohmann::json& summary) {
 
 SampleFrames samplesOf(const RunFolder& run) {
   if (!run.timing) return {{}, {}, "no frame list: " + run.timing_problem};
-  return loadSampleFrames(run.summary, *run.timing);
+  return loadSampleFrames(run.dir, run.summary, *run.timing);
 }
 
 std::vector<Cell> repeatRow(const nlohmann::json& entry, std::size_t k) {
