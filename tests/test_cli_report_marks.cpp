@@ -152,9 +152,11 @@ class CliReportMarks : public ::testing::Test {
     const auto synth =
         runCli("synth " + data().string() + " --preset walking-xyz-rgbd --frames 40 --seed 5");
     ASSERT_EQ(synth.exit_code, 0) << synth.output;
+    // --enhance off: the report extracts again exactly the run's keypoints (an enhancer's
+    // online statistics are not kept), so that what it draws green can be checked.
     const auto run = runCli("run --dataset tum:" + data().string() +
                             " --detector boxes:" + (data() / "detections.txt").string() +
-                            " --sequential --report --out " + out().string());
+                            " --enhance off --sequential --report --out " + out().string());
     ASSERT_EQ(run.exit_code, 0) << run.output;
   }
   static void TearDownTestSuite() { dir_.reset(); }
@@ -230,6 +232,22 @@ TEST_F(CliReportMarks, SampleFramesMarkTheDroppedFeaturesWithTheRunsCounts) {
   }
   EXPECT_GT(frames_with_dropped, 0) << "a sample frame with features dropped";
   EXPECT_EQ(html.find("class=\"note\""), std::string::npos) << "a section says something failed";
+}
+
+// Green is what the run kept: the keypoints extracted again outside the previous frame's
+// boxes (as the run took them), minus those at the run's dropped features.
+TEST_F(CliReportMarks, TheKeypointsDrawnGreenAreTheOnesTheRunKept) {
+  const std::string html = readTextFile(out() / "report.html");
+  const auto lines = markLines(out() / "moving_features.txt");
+  const auto frames = markedFrames(html);
+  ASSERT_EQ(frames.size(), 3U);
+  for (const long frame : frames) {
+    const auto& line = lines.at(frame);
+    const auto kept = static_cast<long>(line.at(1) - line.at(3) - line.at(4));
+    const std::string key = "frame." + std::to_string(frame) + ".";
+    EXPECT_EQ(keyText(html, key + "kept"), std::to_string(kept)) << frame;
+    EXPECT_EQ(keyText(html, key + "green"), std::to_string(kept)) << frame;
+  }
 }
 
 TEST_F(CliReportMarks, AnOldRunFolderWithoutTheFileStillGivesAReport) {

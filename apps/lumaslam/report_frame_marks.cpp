@@ -1,6 +1,9 @@
 #include "report_frame_marks.h"
 
 #include <algorithm>
+#include <cmath>
+#include <map>
+#include <utility>
 
 #include <opencv2/imgproc.hpp>
 
@@ -9,7 +12,6 @@ namespace {
 
 const cv::Scalar kGreen(0, 255, 0);
 const cv::Scalar kRed(0, 0, 255);
-constexpr float kSameMarkPx = 2.5F;  // on the drawn image: a keypoint there is a red mark's
 
 cv::Mat scaledColour(const cv::Mat& image, double scale) {
   cv::Mat scaled = image;
@@ -19,57 +21,67 @@ cv::Mat scaledColour(const cv::Mat& image, double scale) {
   return scaled;
 }
 
-std::vector<cv::Point2f> scaled(const std::vector<cv::Point2f>& points, cv::Point2f scale) {
-  std::vector<cv::Point2f> result;
-  result.reserve(points.size());
-  for (const cv::Point2f& p : points) result.emplace_back(p.x * scale.x, p.y * scale.y);
-  return result;
+cv::Point2f times(const cv::Point2f& p, cv::Point2f scale) {
+  return {p.x * scale.x, p.y * scale.y};
 }
 
-bool nearAny(const cv::Point2f& point, const std::vector<cv::Point2f>& marks) {
-  return std::any_of(marks.begin(), marks.end(), [&](const cv::Point2f& mark) {
-    return cv::norm(point - mark) <= kSameMarkPx;
-  });
+// The red marks by whole pixel, each as often as the file has it: a keypoint whose rounded
+// position has one left is the run's dropped feature there and takes it (the run's mask
+// decided on the rounded position too; two keypoints can share a pixel, e.g. on two levels,
+// and the motion test may flag one of them only).
+using MarkCounts = std::map<std::pair<long, long>, int>;
+
+MarkCounts markCounts(const FrameMarks& marks) {
+  MarkCounts counts;
+  for (const auto* points : {&marks.dropped, &marks.moving}) {
+    for (const cv::Point2f& p : *points) ++counts[{std::lround(p.x), std::lround(p.y)}];
+  }
+  return counts;
+}
+
+bool takeMark(MarkCounts& counts, const cv::Point2f& point) {
+  const auto it = counts.find({std::lround(point.x), std::lround(point.y)});
+  if (it == counts.end() || it->second == 0) return false;
+  --it->second;
+  return true;
 }
 
 void drawRedMarks(cv::Mat& canvas, const FrameMarks& marks, cv::Point2f scale) {
   for (const cv::Rect2f& box : marks.boxes) {
-    const cv::Point2f corner(box.x * scale.x, box.y * scale.y);
-    const cv::Point2f size(box.width * scale.x, box.height * scale.y);
-    cv::rectangle(canvas, cv::Rect2f(corner, cv::Size2f(size.x, size.y)), kRed, 1, cv::LINE_AA);
+    const cv::Point2f corner = times(box.tl(), scale);
+    const cv::Size2f size(box.width * scale.x, box.height * scale.y);
+    cv::rectangle(canvas, cv::Rect2f(corner, size), kRed, 1, cv::LINE_AA);
   }
-  for (const cv::Point2f& point : scaled(marks.dropped, scale)) {
-    cv::circle(canvas, point, 3, kRed, 2, cv::LINE_AA);
+  for (const cv::Point2f& point : marks.dropped) {
+    cv::circle(canvas, times(point, scale), 3, kRed, 2, cv::LINE_AA);
   }
-  for (const cv::Point2f& point : scaled(marks.moving, scale)) {
-    cv::drawMarker(canvas, point, kRed, cv::MARKER_TILTED_CROSS, 8, 2, cv::LINE_AA);
+  for (const cv::Point2f& point : marks.moving) {
+    cv::drawMarker(canvas, times(point, scale), kRed, cv::MARKER_TILTED_CROSS, 8, 2, cv::LINE_AA);
   }
 }
 
 }  // namespace
 
-cv::Mat drawFrameMarks(const cv::Mat& colour, const std::vector<cv::KeyPoint>& keypoints,
-                       const FrameMarks* marks, cv::Size marks_image, int max_width) {
+DrawnFrame drawFrameMarks(const cv::Mat& colour, const std::vector<cv::KeyPoint>& keypoints,
+                          const FrameMarks* marks, cv::Size marks_image, int max_width) {
   const double scale = std::min(1.0, static_cast<double>(max_width) / colour.cols);
-  cv::Mat canvas = scaledColour(colour, scale);
+  DrawnFrame drawn{scaledColour(colour, scale), 0};
   const auto to_canvas = static_cast<float>(scale);
-  const cv::Point2f marks_to_canvas =
-      marks_image.empty()
-          ? cv::Point2f(to_canvas, to_canvas)
-          : cv::Point2f(static_cast<float>(canvas.cols) / static_cast<float>(marks_image.width),
-                        static_cast<float>(canvas.rows) / static_cast<float>(marks_image.height));
-  std::vector<cv::Point2f> red;
-  if (marks) {
-    red = scaled(marks->dropped, marks_to_canvas);
-    const auto moving = scaled(marks->moving, marks_to_canvas);
-    red.insert(red.end(), moving.begin(), moving.end());
-  }
+  // The marks' pixels from and to the image's (the same unless Camera.newWidth resized it).
+  const cv::Point2f to_marks =
+      marks_image.empty() ? cv::Point2f(1.0F, 1.0F)
+                          : cv::Point2f(static_cast<float>(marks_image.width) / colour.cols,
+                                        static_cast<float>(marks_image.height) / colour.rows);
+  MarkCounts counts = marks ? markCounts(*marks) : MarkCounts{};
   for (const cv::KeyPoint& keypoint : keypoints) {
-    const cv::Point2f point = keypoint.pt * to_canvas;
-    if (!nearAny(point, red)) cv::circle(canvas, point, 3, kGreen, 1, cv::LINE_AA);
+    if (takeMark(counts, times(keypoint.pt, to_marks))) continue;
+    cv::circle(drawn.canvas, keypoint.pt * to_canvas, 3, kGreen, 1, cv::LINE_AA);
+    ++drawn.green;
   }
-  if (marks) drawRedMarks(canvas, *marks, marks_to_canvas);
-  return canvas;
+  if (marks) {
+    drawRedMarks(drawn.canvas, *marks, {to_canvas / to_marks.x, to_canvas / to_marks.y});
+  }
+  return drawn;
 }
 
 }  // namespace lumaslam::cli

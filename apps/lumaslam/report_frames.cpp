@@ -12,6 +12,7 @@
 #include "lumaslam/feature/orb_extractor.h"
 #include "lumaslam/io/dataset_reader.h"
 #include "lumaslam/io/settings.h"
+#include "report_extraction_mask.h"
 #include "report_frame_marks.h"
 
 namespace lumaslam::cli {
@@ -22,6 +23,7 @@ constexpr int kMaxWidth = 480;
 struct Pick {
   std::string role;
   std::size_t index = 0;
+  std::optional<std::size_t> previous;  // the frame tracked before it (timing.csv's row above)
 };
 
 // First, middle and last tracked frame (timing.csv "state" ok); without any tracked frame,
@@ -29,18 +31,28 @@ struct Pick {
 std::vector<Pick> pickFrames(const TimingTable& timing) {
   const auto indices = timing.numbers("frame");
   const auto states = timing.texts("state");
-  std::vector<std::size_t> tracked;
-  for (std::size_t i = 0; i < indices.size(); ++i) {
-    if (states[i] == "ok") tracked.push_back(static_cast<std::size_t>(indices[i]));
+  std::vector<Pick> tracked;
+  const auto pick = [&](std::size_t row) {
+    tracked.push_back(
+        {"", static_cast<std::size_t>(indices[row]),
+         row > 0 ? std::optional(static_cast<std::size_t>(indices[row - 1])) : std::nullopt});
+  };
+  for (std::size_t row = 0; row < indices.size(); ++row) {
+    if (states[row] == "ok") pick(row);
   }
   const bool any = !tracked.empty();
   if (!any) {
-    for (const double index : indices) tracked.push_back(static_cast<std::size_t>(index));
+    for (std::size_t row = 0; row < indices.size(); ++row) pick(row);
   }
   if (tracked.empty()) return {};
-  std::vector<Pick> picks = {{any ? "first tracked" : "first (none tracked)", tracked.front()}};
-  if (any) picks.push_back({"middle tracked", tracked[tracked.size() / 2]});
-  picks.push_back({any ? "last tracked" : "last (none tracked)", tracked.back()});
+  const auto named = [](Pick pick, const char* role) {
+    pick.role = role;
+    return pick;
+  };
+  std::vector<Pick> picks = {
+      named(tracked.front(), any ? "first tracked" : "first (none tracked)")};
+  if (any) picks.push_back(named(tracked[tracked.size() / 2], "middle tracked"));
+  picks.push_back(named(tracked.back(), any ? "last tracked" : "last (none tracked)"));
   std::vector<Pick> unique;
   for (const Pick& pick : picks) {
     const bool seen = std::any_of(unique.begin(), unique.end(),
@@ -106,23 +118,41 @@ SampleFrame::Marked countsOf(const FrameMarks& marks) {
   return {marks.features - dropped, marks.dropped.size(), marks.moving.size(), marks.boxes.size()};
 }
 
-SampleFrame sampleFrame(const Pick& pick, const std::string& dataset,
-                        const enhance::EnhancerParams& params,
-                        const feature::OrbExtractor& extractor,
-                        const std::optional<MovingFeatures>& marks) {
-  const io::FrameData frame = readFrame(dataset, pick.index);
-  const auto [gray, colour] = asTracked(frame.image, params);
-  const auto keypoints = extractor.extract(gray).keypoints;
+// What the sample frames are made with.
+struct Sampling {
+  std::string dataset;
+  io::Settings settings;
+  enhance::EnhancerParams params;
+  feature::OrbExtractor extractor;
+  std::optional<MovingFeatures> marks;
+};
+
+// The run took no feature where the previous frame's dynamic mask was
+// (report_extraction_mask.h); empty without marks of that frame.
+cv::Mat extractionMaskOf(const Pick& pick, const Sampling& sampling, cv::Size image_size) {
+  const FrameMarks* previous = pick.previous ? marksOf(sampling.marks, *pick.previous) : nullptr;
+  if (!previous || previous->boxes.empty()) return {};
+  return previousDynamicMask(*previous, readFrame(sampling.dataset, *pick.previous),
+                             sampling.settings, sampling.marks->image, image_size);
+}
+
+SampleFrame sampleFrame(const Pick& pick, const Sampling& sampling) {
+  const io::FrameData frame = readFrame(sampling.dataset, pick.index);
+  const auto [gray, colour] = asTracked(frame.image, sampling.params);
+  const auto keypoints =
+      sampling.extractor.extract(gray, extractionMaskOf(pick, sampling, gray.size())).keypoints;
+  const auto& marks = sampling.marks;
   const FrameMarks* frame_marks = marksOf(marks, frame.index);
   const cv::Size marks_image = marks ? marks->image : cv::Size();
-  SampleFrame sample{
-      pick.role,
-      frame.index,
-      frame.timestamp,
-      jpegDataUri(frame.image, kMaxWidth),
-      jpegDataUri(drawFrameMarks(colour, keypoints, frame_marks, marks_image, kMaxWidth)),
-      keypoints.size(),
-      std::nullopt};
+  const DrawnFrame drawn = drawFrameMarks(colour, keypoints, frame_marks, marks_image, kMaxWidth);
+  SampleFrame sample{pick.role,
+                     frame.index,
+                     frame.timestamp,
+                     jpegDataUri(frame.image, kMaxWidth),
+                     jpegDataUri(drawn.canvas),
+                     keypoints.size(),
+                     drawn.green,
+                     std::nullopt};
   if (frame_marks) sample.marked = countsOf(*frame_marks);
   return sample;
 }
@@ -163,17 +193,18 @@ std::string jpegDataUri(const cv::Mat& image, int max_width) {
 SampleFrames loadSampleFrames(const std::filesystem::path& run_dir, const nlohmann::json& summary,
                               const TimingTable& timing) {
   SampleFrames samples;
-  const auto marks = readMarks(run_dir, samples);
+  auto marks = readMarks(run_dir, samples);
   try {
-    const auto dataset = summary.at("dataset").get<std::string>();
-    const auto settings = io::loadSettings(summary.at("settings").get<std::string>());
-    const auto params = enhancerParams(summary, settings);
+    auto settings = io::loadSettings(summary.at("settings").get<std::string>());
+    auto params = enhancerParams(summary, settings);
     samples.enhancement = params.preset;
     const feature::OrbExtractor extractor(settings.file
                                               ? feature::OrbSettings::fromSettings(*settings.file)
                                               : feature::OrbSettings{});
+    const Sampling sampling{summary.at("dataset").get<std::string>(), std::move(settings),
+                            std::move(params), extractor, std::move(marks)};
     for (const Pick& pick : pickFrames(timing)) {
-      samples.frames.push_back(sampleFrame(pick, dataset, params, extractor, marks));
+      samples.frames.push_back(sampleFrame(pick, sampling));
     }
   } catch (const std::exception& e) {
     samples.problem = e.what();

@@ -1,8 +1,9 @@
 #pragma once
 // Sample frames of a run for `lumaslam report`: the first, middle and last tracked frame read
 // again from the run's dataset, raw and enhanced as the pipeline enhances them, with the ORB
-// keypoints tracking would extract and, from the run's moving_features.txt, the detection boxes
-// and the features the run dropped, downscaled and encoded for an inline <img>.
+// keypoints tracking would extract (outside the previous frame's boxes, as the run did) and,
+// from the run's moving_features.txt, the detection boxes and the features the run dropped,
+// downscaled and encoded for an inline <img>.
 #include <cstddef>
 #include <filesystem>
 #include <optional>
@@ -23,6 +24,7 @@ struct SampleFrame {
   std::string raw_uri;        // data:image/jpeg;base64,...
   std::string enhanced_uri;   // the image ORB sees, with its keypoints drawn
   std::size_t keypoints = 0;  // extracted again here
+  std::size_t green = 0;      // of those, drawn green (not at a feature the run dropped)
   // The run's counts from moving_features.txt (nullopt: the file does not have this frame).
   struct Marked {
     std::size_t kept = 0, by_boxes = 0, by_motion_test = 0, boxes = 0;

@@ -15,10 +15,11 @@ std::string introduction(const SampleFrames& samples) {
       "ORB keypoints extracted from the image tracking sees (green).";
   if (samples.unmarked.empty()) {
     return html +
-           " Red: the run's detection boxes and the features it dropped, where its "
-           "moving_features.txt puts them (circles: inside a box, crosses: flagged moving by the "
-           "motion test); a keypoint at a red mark is not drawn green. The counts are the "
-           "run's.</p>\n";
+           " Like the run, the keypoints are taken outside the previous frame's boxes (made "
+           "again from moving_features.txt). Red: the run's detection boxes and the features it "
+           "dropped, where that file puts them (circles: inside a box, crosses: flagged moving "
+           "by the motion test); a keypoint at a red mark is not drawn green. The counts after "
+           "\"the run\" are the run's.</p>\n";
   }
   if (samples.marks_broken) {
     return html + "</p>\n" + htmlNote("No feature is marked: " + samples.unmarked);
@@ -42,7 +43,12 @@ std::string markedCounts(const SampleFrame& frame) {
 
 std::string enhancedCaption(const SampleFrame& frame, const SampleFrames& samples) {
   std::string caption = fmt::format("as tracked, {} ORB keypoints", frame.keypoints);
-  if (frame.marked) return caption + "; the run: " + markedCounts(frame);
+  if (frame.marked) {
+    return caption +
+           fmt::format(", <span data-key=\"frame.{0}.green\" data-value=\"{1}\">{1}</span> green",
+                       frame.index, frame.green) +
+           "; the run: " + markedCounts(frame);
+  }
   if (samples.unmarked.empty()) caption += fmt::format(" (not in {})", kMovingFeaturesFile);
   return caption;
 }

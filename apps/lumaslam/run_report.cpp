@@ -21,7 +21,11 @@ std::string titleOf(const nlohmann::json& summary) {
 }
 
 SampleFrames samplesOf(const RunFolder& run) {
-  if (!run.timing) return {{}, {}, "no frame list: " + run.timing_problem};
+  if (!run.timing) {
+    SampleFrames none;
+    none.problem = "no frame list: " + run.timing_problem;
+    return none;
+  }
   return loadSampleFrames(run.dir, run.summary, *run.timing);
 }
 
