@@ -89,7 +89,7 @@ TEST(CliEnhance, CalibrateWritesSettingsThatReadBack) {
   const RunResult run =
       runCli("enhance --calibrate " + folder.string() + " --out " + out.path().string());
   ASSERT_EQ(run.exit_code, 0) << run.output;
-  EXPECT_NE(run.output.find("Enhancement.clahe.sigma_max"), std::string::npos) << run.output;
+  EXPECT_NE(run.output.find("Enhancement.clahe.sigmaMax"), std::string::npos) << run.output;
   const auto file = out.path() / "enhancement_calibrated.yaml";
   const RunResult reuse =
       runCli("enhance " + (folder / "Arno_A.png").string() + " --settings " + file.string());

@@ -1,9 +1,15 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
+#include <functional>
+#include <map>
+
+#include <spdlog/sinks/ringbuffer_sink.h>
+#include <spdlog/spdlog.h>
 
 #include "lumaslam/core/error.h"
 #include "lumaslam/core/settings_file.h"
+#include "lumaslam/core/settings_spellings.h"
 #include "test_paths.h"
 
 using lumaslam::Error;
@@ -242,3 +248,100 @@ TEST(SettingsFile, BytesThatAreNotUtf8AreRefusedBeforeOpenCvsParserLoops) {
       SettingsFile::fromString("Camera.fx: 535.4  # Brennweite f\xc3\xbcr x, \xe2\x82\xac\n");
   EXPECT_DOUBLE_EQ(s.get<double>("Camera.fx"), 535.4);
 }
+
+// Keys renamed to camelCase (issue 21, core/settings_spellings.h): the old snake_case spelling
+// is read in place of the new name, with one warning naming the file, the old and the new key.
+namespace spellings {
+namespace {
+
+std::string loggedWhile(const std::function<void()>& work) {
+  const auto sink = std::make_shared<spdlog::sinks::ringbuffer_sink_mt>(32);
+  const auto logger = spdlog::default_logger();
+  logger->sinks().push_back(sink);
+  work();
+  logger->sinks().pop_back();
+  std::string logged;
+  for (const auto& line : sink->last_formatted()) logged += line;
+  return logged;
+}
+
+std::size_t count(const std::string& text, const std::string& part) {
+  std::size_t n = 0;
+  for (auto at = text.find(part); at != std::string::npos; at = text.find(part, at + 1)) ++n;
+  return n;
+}
+
+TEST(SettingsFileSpellings, OldSpellingIsReadWithOneWarning) {
+  const auto old_file = SettingsFile::fromString("Detector.queue_capacity: 7\n", "settings.yaml");
+  const auto new_file = SettingsFile::fromString("Detector.queueCapacity: 7\n", "settings.yaml");
+  std::optional<int> read_old;
+  const std::string logged = loggedWhile([&] {
+    read_old = old_file.find<int>("Detector.queueCapacity");
+    EXPECT_TRUE(old_file.has("Detector.queueCapacity"));  // a second read: no second warning
+  });
+  EXPECT_EQ(read_old, new_file.find<int>("Detector.queueCapacity"));
+  EXPECT_EQ(read_old, 7);
+  const std::string warning =
+      "settings.yaml: 'Detector.queue_capacity' is an old spelling; use 'Detector.queueCapacity'";
+  EXPECT_EQ(count(logged, warning), 1U) << logged;
+  EXPECT_TRUE(lumaslam::core::unknownKeys(old_file).empty());
+  EXPECT_EQ(loggedWhile([&] { (void)new_file.find<int>("Detector.queueCapacity"); }), "");
+}
+
+TEST(SettingsFileSpellings, NestedOldSpellingIsReadToo) {
+  const auto file = SettingsFile::fromString(
+      "Enhancement:\n  clahe:\n    tiles_x: 3\n    fixed_limit: 2.5\n", "nested.yaml");
+  EXPECT_EQ(file.get<int>("Enhancement.clahe.tilesX", 8), 3);
+  EXPECT_DOUBLE_EQ(file.get<double>("Enhancement.clahe.fixedLimit", 2.0), 2.5);
+  EXPECT_TRUE(lumaslam::core::unknownKeys(file).empty());
+}
+
+TEST(SettingsFileSpellings, BothSpellingsAreAnErrorNamingBoth) {
+  const auto file = SettingsFile::fromString(
+      "Enhancement.clahe.tiles_x: 4\nEnhancement.clahe.tilesX: 4\n", "both.yaml");
+  try {
+    (void)file.find<int>("Enhancement.clahe.tilesX");
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("both.yaml"), std::string::npos) << what;
+    EXPECT_NE(what.find("'Enhancement.clahe.tilesX'"), std::string::npos) << what;
+    EXPECT_NE(what.find("'Enhancement.clahe.tiles_x'"), std::string::npos) << what;
+  }
+}
+
+TEST(SettingsFileSpellings, AWrongTypeNamesTheKeyAsWritten) {
+  const auto file = SettingsFile::fromString("Detector.mask_margin: wide\n", "type.yaml");
+  try {
+    (void)file.find<int>("Detector.maskMargin");
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("key 'Detector.mask_margin': expected integer"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
+// "Did you mean" suggests the new names, also for a typo of an old spelling.
+TEST(SettingsFileSpellings, TyposAreAnsweredWithTheNewName) {
+  const auto file =
+      SettingsFile::fromString("Detector.queueCapacty: 3\nDetector.memory_frame: 2\n", "typo.yaml");
+  (void)file.find<int>("Detector.queueCapacity");
+  (void)file.find<int>("Detector.memoryFrames");
+  std::map<std::string, std::string> found;
+  for (const auto& [key, suggestion] : lumaslam::core::unknownKeys(file)) found[key] = suggestion;
+  EXPECT_EQ(found["Detector.queueCapacty"], "Detector.queueCapacity");
+  EXPECT_EQ(found["Detector.memory_frame"], "Detector.memoryFrames");
+}
+
+TEST(SettingsFileSpellings, EveryOldSpellingIsSnakeCaseAndEveryNewOneCamelCase) {
+  for (const auto& [old_key, new_key] : lumaslam::core::keySpellings()) {
+    EXPECT_NE(old_key.find('_'), std::string_view::npos) << old_key;
+    EXPECT_EQ(new_key.find('_'), std::string_view::npos) << new_key;
+    EXPECT_EQ(lumaslam::core::oldSpellingOf(new_key), old_key);
+    EXPECT_EQ(lumaslam::core::newSpellingOf(old_key), new_key);
+  }
+}
+
+}  // namespace
+}  // namespace spellings

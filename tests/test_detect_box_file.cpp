@@ -114,7 +114,7 @@ TEST(DetectorParams, ReadsSettingsAndNamesTheBadKey) {
       "Detector.classes: \"person, bicycle\"\n"
       "Detector.confidence: 0.4\n"
       "Detector.stride: 3\n"
-      "Detector.mask_margin: 5\n",
+      "Detector.maskMargin: 5\n",
       "test.yaml");
   const auto params = DetectorParams::fromSettings(settings);
   EXPECT_EQ(params.model, "m.onnx");
@@ -128,10 +128,10 @@ TEST(DetectorParams, ReadsSettingsAndNamesTheBadKey) {
   const std::vector<std::pair<std::string, std::string>> bad{
       {"Detector.model: m.onnx\nDetector.stride: 0\n", "Detector.stride"},
       {"Detector.model: m.onnx\nDetector.confidence: 1.5\n", "Detector.confidence"},
-      {"Detector.model: m.onnx\nDetector.input_size: 300\n", "Detector.input_size"},
+      {"Detector.model: m.onnx\nDetector.inputSize: 300\n", "Detector.inputSize"},
       {"Detector.model: m.onnx\nDetector.type: magic\n", "Detector.type"},
       {"Detector.confidence: 0.5\n", "Detector.model"},
-      {"Detector.type: box_file\n", "Detector.box_file"},
+      {"Detector.type: box_file\n", "Detector.boxFile"},
   };
   for (const auto& [text, key] : bad) {
     const std::string message = errorOf(

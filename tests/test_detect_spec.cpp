@@ -14,7 +14,7 @@ core::SettingsFile settings(const std::string& text) {
 
 TEST(DetectorSpec, SettingsDecideWithoutASpec) {
   EXPECT_FALSE(detectorParamsFor(nullptr, std::nullopt));
-  const auto tuning_only = settings("Detector.mask_margin: 4\n");
+  const auto tuning_only = settings("Detector.maskMargin: 4\n");
   EXPECT_FALSE(detectorParamsFor(&tuning_only, std::nullopt));  // names no detector
   const auto off = settings("Detector.type: none\nDetector.model: m.onnx\n");
   EXPECT_FALSE(detectorParamsFor(&off, std::nullopt));
@@ -30,7 +30,7 @@ TEST(DetectorSpec, SettingsDecideWithoutASpec) {
 }
 
 TEST(DetectorSpec, ASpecReplacesTheSourceAndKeepsTheTuning) {
-  const auto file = settings("Detector.mask_margin: 4\nDetector.classes: \"person, box\"\n");
+  const auto file = settings("Detector.maskMargin: 4\nDetector.classes: \"person, box\"\n");
   const auto boxes = detectorParamsFor(&file, std::string("boxes:/data/detections.txt"));
   ASSERT_TRUE(boxes);
   EXPECT_EQ(boxes->type, "box_file");

@@ -253,8 +253,8 @@ TEST(EnhanceSettings, MissingKeysTakePresetDefaultsAndEveryKeyIsRead) {
   const auto defaults = EnhancerParams::fromSettings(core::SettingsFile::fromString("Other: 1\n"));
   EXPECT_EQ(defaults.preset, "best");
   const auto paper = EnhancerParams::fromSettings(core::SettingsFile::fromString(
-      "Enhancement.preset: \"paper\"\nEnhancement.clahe.tiles_x: 4\n"
-      "Enhancement.brightness.weights: \"swapped\"\nEnhancement.clahe.limit_mode: \"local\"\n"));
+      "Enhancement.preset: \"paper\"\nEnhancement.clahe.tilesX: 4\n"
+      "Enhancement.brightness.weights: \"swapped\"\nEnhancement.clahe.limitMode: \"local\"\n"));
   EXPECT_EQ(paper.clahe.tiles_x, 4);
   EXPECT_EQ(paper.clahe.tiles_y, 8);
   EXPECT_EQ(paper.compensation.weights, CompensationWeights::kSwapped);
@@ -298,8 +298,8 @@ TEST(EnhanceSettings, WrongValuesNameTheFileAndKey) {
   expectError("Enhancement.preset: \"shiny\"\n", "Enhancement.preset");
   expectError("Enhancement.stereo: \"both\"\n", "Enhancement.stereo");
   expectError("Enhancement.gate.epsilon: \"small\"\n", "Enhancement.gate.epsilon");
-  expectError("Enhancement.clahe.tiles_x: 2.5\n", "Enhancement.clahe.tiles_x");
-  expectError("Enhancement.clahe.tiles_y: 0\n", "Enhancement.clahe.tiles_y");
+  expectError("Enhancement.clahe.tilesX: 2.5\n", "Enhancement.clahe.tilesX");
+  expectError("Enhancement.clahe.tilesY: 0\n", "Enhancement.clahe.tilesY");
   expectError("Enhancement.clahe.sigma: \"laplace\"\n", "Enhancement.clahe.sigma");
   expectError("Enhancement.brightness.alpha: -1\n", "Enhancement.brightness.alpha");
   expectError("Enhancement.channel: 3\n", "Enhancement.channel");

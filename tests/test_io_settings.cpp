@@ -251,7 +251,7 @@ TEST(Settings, RetiredQueueCapacityLoadsWithAWarning) {
   for (const auto& line : sink->last_formatted()) logged += line;
   EXPECT_NE(logged.find("test.yaml: key 'System.queueCapacity' is ignored"), std::string::npos)
       << logged;
-  EXPECT_NE(logged.find("Detector.queue_capacity"), std::string::npos) << logged;
+  EXPECT_NE(logged.find("Detector.queueCapacity"), std::string::npos) << logged;
   EXPECT_TRUE(parsed().file->askedKeys().contains("System.queueCapacity"));
 }
 

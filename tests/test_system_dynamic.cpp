@@ -44,7 +44,7 @@ TEST(SystemDynamic, BoxRemovalCutsTheErrorOnWalkingXyz) {
         EXPECT_EQ(result.dynamic_boxes.size(), frame.cam0.boxes.size()) << frame.index;
         if (!result.dynamic_boxes.empty()) ++frames_with_boxes;
         if (!result.dropped_features.empty()) ++frames_with_drops;
-        // Detector.mask_margin is 8 px; rounding adds at most one more.
+        // Detector.maskMargin is 8 px; rounding adds at most one more.
         for (const auto& p : result.dropped_features) {
           if (!insideAGrownBox(p, result.dynamic_boxes, 9.0F)) ++outside;
         }

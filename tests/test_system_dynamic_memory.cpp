@@ -1,5 +1,5 @@
 // Missed detections (issue 6's weak spot): with the detector blind on every other 5-frame
-// burst, tracking's memory of recent boxes (Detector.memory_frames) keeps the people out of
+// burst, tracking's memory of recent boxes (Detector.memoryFrames) keeps the people out of
 // pose estimation and out of the map.
 #include <gtest/gtest.h>
 
@@ -25,7 +25,7 @@ TEST(SystemDynamicMemory, RecentBoxesCoverForMissedDetections) {
 
   const auto with_memory = test::runSynthetic(sequence, options);
   const auto without_memory =
-      test::runSynthetic(sequence, options, {}, "Detector.memory_frames: 0\n");
+      test::runSynthetic(sequence, options, {}, "Detector.memoryFrames: 0\n");
   EXPECT_EQ(with_memory.tracked, with_memory.frames);
   EXPECT_LE(with_memory.ate(), 0.01);  // issue 6's box-file target
   // ~2x the measured ATE (issue 22): 4.0 mm on 2026-12-04 (sequential, deterministic; the

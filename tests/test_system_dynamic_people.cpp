@@ -42,7 +42,7 @@ TEST(SystemDynamicPeople, YoloRemovalOnPhotoWalkersMeetsTheIssueTarget) {
 
 // The generator's boxes are tight: features on the background just beside a walker's
 // silhouette survive the depth refinement (their depth is the wall's) but their descriptor
-// patches show the walker. Without the band that Detector.depth_edge keeps masked around the
+// patches show the walker. Without the band that Detector.depthEdge keeps masked around the
 // silhouette, this sequence had a 4.8 cm error spike (ATE 7.6 mm); with it every frame stays
 // within 1.2 cm (ATE 4.4 mm).
 TEST(SystemDynamicPeople, GroundTruthBoxRemovalKeepsEveryFrameNearTheTruth) {

@@ -175,8 +175,8 @@ TEST(StageSettings, PrintedSettingsReadBackToTheSameValues) {
            "Tracking.minInlierFractionOfLast: 0.3\nTracking.motionSearchRadius: 7.3\n"
            "LocalMapping.redundancy: 0.85\nLoop.globalBundleAdjustment: 0\n"
            "ORBextractor.nFeatures: 1100\nDynamic.dynamicBelow: -2.5\n"
-           "Initializer.minParallax: 1.5\nEnhancement.clahe.tiles_x: 4\n"
-           "Detector.type: box_file\nDetector.box_file: boxes.txt\nDetector.stride: 3\n";
+           "Initializer.minParallax: 1.5\nEnhancement.clahe.tilesX: 4\n"
+           "Detector.type: box_file\nDetector.boxFile: boxes.txt\nDetector.stride: 3\n";
   });
   PipelineOptions options;
   options.sequential = true;
@@ -187,7 +187,7 @@ TEST(StageSettings, PrintedSettingsReadBackToTheSameValues) {
         "System.sequential: true\n", "System.sensor: \"rgbd\"\n",
         "LocalMapping.triangulationNeighbours: 10\n", "Dynamic.motionEvidence: true\n",
         "Dynamic.dynamicBelow: -2.5\n", "Dynamic.forget: 0.95\n", "Initializer.minParallax: 1.5\n",
-        "Initializer.ransacIterations: 200\n", "Enhancement.clahe.tiles_x: 4\n",
+        "Initializer.ransacIterations: 200\n", "Enhancement.clahe.tilesX: 4\n",
         "Detector.type: \"box_file\"\n", "Detector.stride: 3\n", "Camera1.fx: 535.4\n",
         "Camera.newWidth: 320\n", "Camera.RGB: false\n", "Camera.type: \"PinHole\"\n"}) {
     EXPECT_NE(printed.find(line), std::string::npos) << line << " not in\n" << printed;

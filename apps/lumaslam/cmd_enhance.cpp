@@ -294,8 +294,9 @@ const bool registered = registerCommand(
       cmd.add_option("--preset", options->preset, "Preset (default: best)")
           ->check(CLI::IsMember(EnhancerParams::presetNames()));
       cmd.add_option("--settings", options->settings, "Settings file with Enhancement.* keys");
-      cmd.add_option("--calibrate", options->calibrate,
-                     "Measure sigma_max and d_max over this sequence; print them as settings");
+      cmd.add_option(
+          "--calibrate", options->calibrate,
+          "Measure Enhancement.clahe.sigmaMax and dMax over this sequence; print them as settings");
       cmd.add_option("--evaluate-pairs", options->evaluate_pairs,
                      "Score every preset on <scene>_A/_B exposure pairs under this folder");
       cmd.add_option("--evaluate-darkened", options->evaluate_darkened,

@@ -17,7 +17,7 @@ std::filesystem::path configSettingsFile(const std::filesystem::path& dir,
 
 // Writes the copy for every dataset x configuration with detector_classes or sensor (after the
 // synth data is prepared: its settings are the generator's). Relative paths in the copied file
-// (System.datasetRoot, Loop.vocabulary, Detector.model, Detector.box_file, Detector.names) are
+// (System.datasetRoot, Loop.vocabulary, Detector.model, Detector.boxFile, Detector.names) are
 // made absolute from the original's folder.
 void writeConfigSettings(const Plan& plan, const std::filesystem::path& dir);
 

@@ -12,9 +12,10 @@
 namespace lumaslam::cli {
 namespace {
 
-constexpr std::array<const char*, 5> kPathKeys = {"System.datasetRoot", "Loop.vocabulary",
-                                                  "Detector.model", "Detector.box_file",
-                                                  "Detector.names"};
+// Detector.box_file: the old spelling of Detector.boxFile (core/settings_spellings.h).
+constexpr std::array<const char*, 6> kPathKeys = {"System.datasetRoot", "Loop.vocabulary",
+                                                  "Detector.model",     "Detector.boxFile",
+                                                  "Detector.box_file",  "Detector.names"};
 
 // "Key: value  # comment" -> "value" without quotes and spaces.
 std::string valueOf(const std::string& line) {

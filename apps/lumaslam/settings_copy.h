@@ -11,7 +11,7 @@ namespace lumaslam::cli {
 
 // The text of `source` with each key of `values` set to its value (quoted; added at the end
 // when the file lacks the key). Relative paths (System.datasetRoot, Loop.vocabulary,
-// Detector.model, Detector.box_file, Detector.names) are made absolute from `source`'s folder,
+// Detector.model, Detector.boxFile, Detector.names) are made absolute from `source`'s folder,
 // so the copy works from anywhere. Throws Error naming `source` when it cannot be read.
 std::string settingsWithValues(const std::filesystem::path& source,
                                const std::map<std::string, std::string>& values);

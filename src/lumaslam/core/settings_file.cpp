@@ -10,7 +10,10 @@
 #include <regex>
 #include <sstream>
 
+#include <spdlog/spdlog.h>
+
 #include "lumaslam/core/error.h"
+#include "lumaslam/core/settings_spellings.h"
 
 namespace lumaslam::core {
 namespace {
@@ -141,14 +144,9 @@ SettingsFile SettingsFile::fromString(const std::string& yaml, const std::string
   return SettingsFile(std::move(storage), origin, std::move(key_lines));
 }
 
-cv::FileNode SettingsFile::node(std::string_view key) const {
-  const std::string k(key);
-  {
-    std::lock_guard lock(asked_->mutex);
-    asked_->keys.insert(k);
-  }
-  cv::FileNode n = storage_[k];
-  if (!n.empty() || k.find('.') == std::string::npos) return n;
+cv::FileNode SettingsFile::writtenNode(const std::string& key) const {
+  cv::FileNode n = storage_[key];
+  if (!n.empty() || key.find('.') == std::string::npos) return n;
   n = storage_.root();
   std::string_view rest = key;
   while (!rest.empty()) {
@@ -160,6 +158,38 @@ cv::FileNode SettingsFile::node(std::string_view key) const {
     rest = dot == std::string_view::npos ? std::string_view{} : rest.substr(dot + 1);
   }
   return n;
+}
+
+SettingsFile::FoundKey SettingsFile::resolve(std::string_view key) const {
+  const std::string k(key);
+  {
+    std::lock_guard lock(asked_->mutex);
+    asked_->keys.insert(k);
+  }
+  FoundKey found{writtenNode(k), k};
+  const auto old_spelling = oldSpellingOf(key);
+  if (!old_spelling) return found;
+  const std::string old_key(*old_spelling);
+  const cv::FileNode old_node = writtenNode(old_key);
+  if (old_node.empty()) return found;
+  if (!found.node.empty()) {
+    fail("{}: both '{}' and its old spelling '{}' are set; keep only '{}'", origin_, k, old_key, k);
+  }
+  warnOldSpelling(old_key, k);
+  return {old_node, old_key};
+}
+
+// Once per file and key, however many modules read it.
+void SettingsFile::warnOldSpelling(const std::string& old_key, const std::string& new_key) const {
+  {
+    std::lock_guard lock(asked_->mutex);
+    if (!asked_->warned.insert(old_key).second) return;
+  }
+  spdlog::warn("{}: '{}' is an old spelling; use '{}'", origin_, old_key, new_key);
+}
+
+cv::FileNode SettingsFile::node(std::string_view key) const {
+  return resolve(key).node;
 }
 
 bool SettingsFile::has(std::string_view key) const {
@@ -182,6 +212,13 @@ bool isMatrix(const cv::FileNode& n) {
   return n.isMap() && !n["data"].empty() && !n["rows"].empty();
 }
 
+// An old spelling counts as asked when its new name was (SettingsFile::resolve read it).
+bool wasAsked(const std::set<std::string>& asked, const std::string& key) {
+  if (asked.contains(key)) return true;
+  const auto new_spelling = newSpellingOf(key);
+  return new_spelling && asked.contains(std::string(*new_spelling));
+}
+
 void flattenKeys(const cv::FileNode& n, const std::string& prefix,
                  const std::set<std::string>& asked, std::vector<std::string>& out) {
   for (const auto& key : n.keys()) {
@@ -189,7 +226,7 @@ void flattenKeys(const cv::FileNode& n, const std::string& prefix,
     const cv::FileNode child = n[key];
     if (child.isMap() && !isMatrix(child) && !asked.contains(flat)) {
       flattenKeys(child, flat, asked, out);
-    } else if (!asked.contains(flat)) {
+    } else if (!wasAsked(asked, flat)) {
       out.push_back(flat);
     }
   }
@@ -279,11 +316,13 @@ void SettingsFile::requireIntRange(std::string_view key) const {
 
 template <typename T>
 std::optional<T> SettingsFile::find(std::string_view key) const {
-  const auto n = node(key);
+  const auto [n, written_key] = resolve(key);
   if (n.empty() || n.isNone()) return std::nullopt;
-  if constexpr (std::is_same_v<T, int>) requireIntRange(key);
+  if constexpr (std::is_same_v<T, int>) requireIntRange(written_key);
   auto value = convert<T>(n);
-  if (!value) invalid(key, fmt::format("expected {}, found {}", typeName<T>(), describe(n)));
+  if (!value) {
+    invalid(written_key, fmt::format("expected {}, found {}", typeName<T>(), describe(n)));
+  }
   return value;
 }
 

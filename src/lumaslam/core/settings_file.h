@@ -1,8 +1,9 @@
 #pragma once
 // Typed access to an ORB-SLAM3-style settings file (%YAML:1.0, read with cv::FileStorage).
 // Keys are flat ("Camera.fx", "Enhancement.preset"); a key that is not found flat is also
-// looked up as a nested path (Camera: {fx: ...}). Every failure names file, key and the
-// expected type.
+// looked up as a nested path (Camera: {fx: ...}). A key renamed to camelCase (issue 21) is
+// also read under its old snake_case spelling, with a warning (core/settings_spellings.h).
+// Every failure names file, key and the expected type.
 #include <filesystem>
 #include <map>
 #include <memory>
@@ -55,7 +56,16 @@ class SettingsFile {
  private:
   SettingsFile(cv::FileStorage storage, std::string origin,
                std::map<std::string, KeyLine> key_lines);
+  struct FoundKey {
+    cv::FileNode node;  // empty when the file has neither spelling
+    std::string key;    // as the file spells it: `key` or its old spelling
+  };
+  // The node of `key`, or of its old spelling (core/settings_spellings.h) with one warning;
+  // Error when the file sets both. Remembers `key` as asked.
+  FoundKey resolve(std::string_view key) const;
   cv::FileNode node(std::string_view key) const;
+  cv::FileNode writtenNode(const std::string& key) const;  // flat, then as a nested path
+  void warnOldSpelling(const std::string& old_key, const std::string& new_key) const;
   void requireIntRange(std::string_view key) const;
 
   cv::FileStorage storage_;
@@ -64,6 +74,7 @@ class SettingsFile {
   struct AskedKeys {
     std::mutex mutex;
     std::set<std::string> keys;
+    std::set<std::string> warned;  // old spellings already warned about
   };
   std::shared_ptr<AskedKeys> asked_ = std::make_shared<AskedKeys>();  // shared by copies
 };

@@ -13,21 +13,21 @@ using core::Range;
 // The numeric Detector.* keys, each with its range (core::SectionReader / SectionPrinter).
 template <typename Keys>
 void visitDetectorNumberKeys(Keys& keys, DetectorParams& p) {
-  keys("input_size", p.input_size, Range::atLeast(0));  // and 0 or a multiple of 32
+  keys("inputSize", p.input_size, Range::atLeast(0));  // and 0 or a multiple of 32
   keys("confidence", p.confidence_threshold, Range::between(0.0, 1.0));
   keys("nms", p.nms_threshold, Range::between(0.0, 1.0));
   keys("threads", p.threads, Range::atLeast(0));
-  keys("box_file_tolerance", p.box_file_tolerance, Range::atLeast(0.0));
+  keys("boxFileTolerance", p.box_file_tolerance, Range::atLeast(0.0));
   keys("stride", p.stride, Range::atLeast(1));
-  keys("queue_capacity", p.queue_capacity, Range::atLeast(1));
-  keys("propagation_features", p.propagation.max_features, Range::atLeast(1));
-  keys("propagation_inner_fraction", p.propagation.inner_fraction, Range::between(0.1, 1.0));
-  keys("mask_margin", p.mask.margin_px, Range::atLeast(0));
-  keys("depth_tolerance", p.mask.depth_tolerance_m, Range::atLeast(0.0));
-  keys("depth_edge", p.mask.depth_edge_px, Range::atLeast(0));
-  keys("depth_percentile", p.mask.depth_percentile, Range::between(0.0, 1.0));
-  keys("memory_frames", p.memory_frames, Range::atLeast(0));
-  keys("memory_strikes", p.memory_strikes, Range::atLeast(1));
+  keys("queueCapacity", p.queue_capacity, Range::atLeast(1));
+  keys("propagationFeatures", p.propagation.max_features, Range::atLeast(1));
+  keys("propagationInnerFraction", p.propagation.inner_fraction, Range::between(0.1, 1.0));
+  keys("maskMargin", p.mask.margin_px, Range::atLeast(0));
+  keys("depthTolerance", p.mask.depth_tolerance_m, Range::atLeast(0.0));
+  keys("depthEdge", p.mask.depth_edge_px, Range::atLeast(0));
+  keys("depthPercentile", p.mask.depth_percentile, Range::between(0.0, 1.0));
+  keys("memoryFrames", p.memory_frames, Range::atLeast(0));
+  keys("memoryStrikes", p.memory_strikes, Range::atLeast(1));
 }
 
 void readDetectorStrings(const core::SettingsFile& settings, DetectorParams& p) {
@@ -39,7 +39,7 @@ void readDetectorStrings(const core::SettingsFile& settings, DetectorParams& p) 
   }
   if (auto model = settings.find<std::string>("Detector.model")) p.model = *model;
   if (auto names = settings.find<std::string>("Detector.names")) p.names = *names;
-  if (auto box_file = settings.find<std::string>("Detector.box_file")) p.box_file = *box_file;
+  if (auto box_file = settings.find<std::string>("Detector.boxFile")) p.box_file = *box_file;
   if (auto classes = settings.find<std::string>("Detector.classes")) {
     p.classes = splitClassList(*classes);
     if (p.classes.empty()) settings.invalid("Detector.classes", "names no class");
@@ -55,7 +55,7 @@ void requireSource(const core::SettingsFile& settings, const DetectorParams& p) 
   if (p.type == "yolo" && p.model.empty())
     settings.invalid("Detector.model", "is required for Detector.type yolo");
   if (p.type == "box_file" && p.box_file.empty()) {
-    settings.invalid("Detector.box_file", "is required for Detector.type box_file");
+    settings.invalid("Detector.boxFile", "is required for Detector.type box_file");
   }
 }
 
@@ -82,7 +82,7 @@ DetectorParams DetectorParams::fromSettings(const core::SettingsFile& settings,
                     [](auto& keys, auto& params) { visitDetectorNumberKeys(keys, params); });
   if (p.input_size != 0 && p.input_size % 32 != 0) {
     settings.invalid(
-        "Detector.input_size",
+        "Detector.inputSize",
         fmt::format("must be 0 (from the model) or a multiple of 32, found {}", p.input_size));
   }
   if (require_source) requireSource(settings, p);
@@ -94,7 +94,7 @@ std::string DetectorParams::settingsLines() const {
   keys("type", type);
   keys("model", model.string());
   keys("names", names.string());
-  keys("box_file", box_file.string());
+  keys("boxFile", box_file.string());
   std::string class_list;
   for (const auto& name : classes) class_list += (class_list.empty() ? "" : ", ") + name;
   keys("classes", class_list);

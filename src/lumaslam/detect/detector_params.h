@@ -29,19 +29,19 @@ struct DetectorParams {
   std::string type = "yolo";    // Detector.type: yolo | box_file | none
   std::filesystem::path model;  // Detector.model (ONNX)
   std::filesystem::path names;  // Detector.names (default: coco80.names next to the model)
-  int input_size = 0;           // Detector.input_size: 0 = read from the model
+  int input_size = 0;           // Detector.inputSize: 0 = read from the model
   float confidence_threshold =
       0.15f;                    // Detector.confidence: objectness * class score (docs/dynamic.md)
   float nms_threshold = 0.45f;  // Detector.nms: IoU above which boxes are merged
   std::vector<std::string> classes{"person"};  // Detector.classes: comma-separated names
   int threads = 0;                             // Detector.threads: cv::setNumThreads, 0 = keep
-  std::filesystem::path box_file;              // Detector.box_file (type box_file)
-  double box_file_tolerance = 0.02;            // Detector.box_file_tolerance [s]
+  std::filesystem::path box_file;              // Detector.boxFile (type box_file)
+  double box_file_tolerance = 0.02;            // Detector.boxFileTolerance [s]
   int stride = 1;                              // Detector.stride: detect every k-th frame
-  int queue_capacity = 4;                      // Detector.queue_capacity: frames waiting
-  PropagationParams propagation;               // Detector.propagation_*
-  MaskParams mask;                             // Detector.mask_margin, Detector.depth_*
-  // Detector.memory_frames / memory_strikes: tracking's memory of recent boxes; a map point
+  int queue_capacity = 4;                      // Detector.queueCapacity: frames waiting
+  PropagationParams propagation;               // Detector.propagationFeatures/InnerFraction
+  MaskParams mask;                             // Detector.maskMargin, Detector.depth*
+  // Detector.memoryFrames / memoryStrikes: tracking's memory of recent boxes; a map point
   // failing the chi-square test this many times near one is dynamic (0 frames = off).
   int memory_frames = 15;
   int memory_strikes = 2;
@@ -52,7 +52,7 @@ struct DetectorParams {
   // Reads every Detector.* key present; absent keys keep their defaults. Throws Error
   // naming the file and key for a wrong type or an out-of-range value, and (unless
   // require_source is false) for a yolo type without Detector.model / box_file type without
-  // Detector.box_file.
+  // Detector.boxFile.
   static DetectorParams fromSettings(const core::SettingsFile& settings,
                                      bool require_source = true);
 

@@ -9,7 +9,7 @@ namespace {
 
 bool settingsNameADetector(const core::SettingsFile& settings) {
   return settings.has("Detector.type") || settings.has("Detector.model") ||
-         settings.has("Detector.box_file");
+         settings.has("Detector.boxFile");
 }
 
 // Applies "yolo:MODEL", "boxes:FILE"; returns false for "none".

@@ -11,7 +11,7 @@ namespace lumaslam::detect {
 
 // The detector's parameters, or nullopt for no detection. Without a spec, detection is on when
 // the settings name a detector (Detector.type yolo|box_file, or Detector.model /
-// Detector.box_file present) and off when they name none (no such key, or Detector.type none).
+// Detector.boxFile present) and off when they name none (no such key, or Detector.type none).
 // A spec replaces the type and its model / box file; the tuning keys (thresholds, stride,
 // mask) still come from the settings. `settings` may be null. Throws Error for a malformed
 // spec ("--detector 'x': expected ...") or a named detector without its file.

@@ -24,13 +24,13 @@ int inputSizeOf(const std::filesystem::path& model, int configured) {
   if (height > 0 && width > 0) {
     if (height != width) fail("{}: input {}x{} is not square", model.string(), width, height);
     if (configured > 0 && configured != height) {
-      fail("{}: model input is {}x{} but Detector.input_size is {}", model.string(), width, height,
+      fail("{}: model input is {}x{} but Detector.inputSize is {}", model.string(), width, height,
            configured);
     }
     return static_cast<int>(height);
   }
   if (configured <= 0)
-    fail("{}: model input size is dynamic; set Detector.input_size", model.string());
+    fail("{}: model input size is dynamic; set Detector.inputSize", model.string());
   return configured;
 }
 

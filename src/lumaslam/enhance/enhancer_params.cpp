@@ -161,20 +161,20 @@ EnhancerParams EnhancerParams::fromSettings(const core::SettingsFile& s) {
 
   auto& c = p.clahe;
   read(s, "Enhancement.clahe.enabled", c.enabled);
-  read(s, "Enhancement.clahe.tiles_x", c.tiles_x);
-  read(s, "Enhancement.clahe.tiles_y", c.tiles_y);
-  for (const auto& [key, tiles] : {std::pair{"Enhancement.clahe.tiles_x", c.tiles_x},
-                                   std::pair{"Enhancement.clahe.tiles_y", c.tiles_y}}) {
+  read(s, "Enhancement.clahe.tilesX", c.tiles_x);
+  read(s, "Enhancement.clahe.tilesY", c.tiles_y);
+  for (const auto& [key, tiles] : {std::pair{"Enhancement.clahe.tilesX", c.tiles_x},
+                                   std::pair{"Enhancement.clahe.tilesY", c.tiles_y}}) {
     if (tiles < 1 || tiles > 64) s.invalid(key, fmt::format("must be in [1, 64], found {}", tiles));
   }
-  readEnum(s, "Enhancement.clahe.limit_mode", kLimitNames, c.limit_mode);
-  readPositive(s, "Enhancement.clahe.fixed_limit", c.fixed_limit, false);
+  readEnum(s, "Enhancement.clahe.limitMode", kLimitNames, c.limit_mode);
+  readPositive(s, "Enhancement.clahe.fixedLimit", c.fixed_limit, false);
   readPositive(s, "Enhancement.clahe.base", c.base, false);
   readPositive(s, "Enhancement.clahe.gain", c.gain, true);
   readEnum(s, "Enhancement.clahe.sigma", kSigmaNames, c.sigma);
   readEnum(s, "Enhancement.clahe.maxima", kMaximaNames, c.maxima);
-  readPositive(s, "Enhancement.clahe.sigma_max", c.sigma_max, true);
-  readPositive(s, "Enhancement.clahe.d_max", c.d_max, true);
+  readPositive(s, "Enhancement.clahe.sigmaMax", c.sigma_max, true);
+  readPositive(s, "Enhancement.clahe.dMax", c.d_max, true);
   return p;
 }
 
@@ -192,16 +192,16 @@ std::string EnhancerParams::toSettingsText() const {
       "Enhancement.channel: \"{}\"\n"
       "Enhancement.stereo: \"{}\"\n"
       "Enhancement.clahe.enabled: {}\n"
-      "Enhancement.clahe.tiles_x: {}\n"
-      "Enhancement.clahe.tiles_y: {}\n"
-      "Enhancement.clahe.limit_mode: \"{}\"\n"
-      "Enhancement.clahe.fixed_limit: {:.6f}\n"
+      "Enhancement.clahe.tilesX: {}\n"
+      "Enhancement.clahe.tilesY: {}\n"
+      "Enhancement.clahe.limitMode: \"{}\"\n"
+      "Enhancement.clahe.fixedLimit: {:.6f}\n"
       "Enhancement.clahe.base: {:.6f}\n"
       "Enhancement.clahe.gain: {:.6f}\n"
       "Enhancement.clahe.sigma: \"{}\"\n"
       "Enhancement.clahe.maxima: \"{}\"\n"
-      "Enhancement.clahe.sigma_max: {:.6f}\n"
-      "Enhancement.clahe.d_max: {:.6f}\n",
+      "Enhancement.clahe.sigmaMax: {:.6f}\n"
+      "Enhancement.clahe.dMax: {:.6f}\n",
       preset, int(gate.enabled), gate.epsilon, gate.theta, int(compensation.enabled),
       compensation.alpha, compensation.beta, nameOf(kWeightNames, compensation.weights),
       nameOf(kChannelNames, channel), nameOf(kStereoNames, stereo), int(c.enabled), c.tiles_x,

@@ -242,14 +242,14 @@ SensorType chooseSensor(const KeyReader& in, std::optional<SensorType> requested
   return inferred;
 }
 
-// System.queueCapacity sized no queue (the detection queue has Detector.queue_capacity, the
+// System.queueCapacity sized no queue (the detection queue has Detector.queueCapacity, the
 // keyframe queues their own rules) and is no longer read (issue 21): files that set it still
 // load, with a warning instead of the unknown-key one.
 void warnAboutRetiredKeys(const KeyReader& in) {
   if (in.hasAny({"System.queueCapacity"})) {
     spdlog::warn(
         "{}: key 'System.queueCapacity' is ignored: it never sized a queue and is no longer "
-        "read; the detection queue's size is Detector.queue_capacity (docs/settings.md)",
+        "read; the detection queue's size is Detector.queueCapacity (docs/settings.md)",
         in.file().origin());
   }
 }
