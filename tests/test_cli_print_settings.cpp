@@ -94,6 +94,43 @@ TEST(CliPrintSettings, TheOutputIsASettingsFile) {
   EXPECT_EQ(file.get<int>("Loop.minInliers"), 40);
 }
 
+TEST(CliPrintSettings, ShowsTheSecondCameraAndTheStereoKeys) {
+  const std::string stereo = printed("euroc_stereo.yaml");
+  for (const char* line :
+       {"Camera2.fx: 457.587\n", "Camera2.p2: -3.555907e-05\n", "Stereo.ThDepth: 60.0\n",
+        "Stereo.T_c1_c2: !!opencv-matrix\n", "System.newMapAfter: 1.0\n"}) {
+    EXPECT_NE(stereo.find(line), std::string::npos) << line << " not in\n" << stereo;
+  }
+  EXPECT_NE(stereo.find("Stereo.b: "), std::string::npos) << stereo;
+  const std::string rgbd = printed("tum_fr1_rgbd.yaml");
+  for (const char* line : {"RGBD.DepthMapFactor: 5000.0\n", "Stereo.ThDepth: 40.0\n"}) {
+    EXPECT_NE(rgbd.find(line), std::string::npos) << line << " not in\n" << rgbd;
+  }
+  EXPECT_EQ(rgbd.find("Camera2."), std::string::npos);
+  const std::string mono = printed("kitti_04-12_mono.yaml");
+  EXPECT_EQ(mono.find("Stereo."), std::string::npos);
+  EXPECT_EQ(mono.find("RGBD."), std::string::npos);
+}
+
+// Stereo (an unrectified pair with Camera2.* and T_c1_c2, a rectified pair) and RGB-D: the
+// printed lines alone are a settings file that prints the same lines again.
+TEST(CliPrintSettings, PrintedStereoAndRgbdSettingsPrintTheSameAgain) {
+  lumaslam::test::TempDir dir("print_settings_sensors");
+  for (const char* config : {"euroc_stereo.yaml", "kitti_04-12_stereo.yaml", "tum_fr1_rgbd.yaml"}) {
+    const auto again = dir.path() / (std::string("again_") + config);
+    const std::string text = printed(config);
+    std::ofstream(again) << text;
+    const auto result =
+        runCli("run --dataset tum:/nowhere --settings " + again.string() + " --print-settings");
+    ASSERT_EQ(result.exit_code, 0) << result.output;
+    const auto body = [](const std::string& s) {  // without the comment naming the file
+      const auto from = s.find("\nCamera.");
+      return from == std::string::npos ? s : s.substr(from);
+    };
+    EXPECT_EQ(body(result.output.substr(result.output.find("%YAML:1.0"))), body(text)) << config;
+  }
+}
+
 TEST(CliPrintSettings, ABadValueIsAnErrorNamingTheKey) {
   lumaslam::test::TempDir dir("print_settings");
   const auto settings = dir.path() / "bad.yaml";

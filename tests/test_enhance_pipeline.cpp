@@ -284,6 +284,33 @@ TEST(EnhanceSettings, MissingKeysTakePresetDefaultsAndEveryKeyIsRead) {
   EXPECT_EQ(back.toSettingsText(), custom.toSettingsText());
 }
 
+// Every real of toSettingsText is written in its shortest round-trip form (issue 21): values
+// with more than 6 decimals read back bit for bit.
+TEST(EnhanceSettings, RealsReadBackBitForBit) {
+  EnhancerParams custom = EnhancerParams::forPreset("paper");
+  custom.gate.epsilon = 0.1 + 1e-12;
+  custom.gate.theta = 1.0 / 3.0;
+  custom.compensation.alpha = 0.2000000001;
+  custom.compensation.beta = 1.2345678901234567;
+  custom.clahe.fixed_limit = 2.0000000123;
+  custom.clahe.base = 6.1e-7;
+  custom.clahe.gain = 3.141592653589793;
+  custom.clahe.sigma_max = 98.76543210987654;
+  custom.clahe.d_max = 1295.0000001;
+  const std::string text = custom.toSettingsText();
+  const auto back = EnhancerParams::fromSettings(core::SettingsFile::fromString(text, "bits"));
+  EXPECT_EQ(back.gate.epsilon, custom.gate.epsilon) << text;
+  EXPECT_EQ(back.gate.theta, custom.gate.theta);
+  EXPECT_EQ(back.compensation.alpha, custom.compensation.alpha);
+  EXPECT_EQ(back.compensation.beta, custom.compensation.beta);
+  EXPECT_EQ(back.clahe.fixed_limit, custom.clahe.fixed_limit) << text;
+  EXPECT_EQ(back.clahe.base, custom.clahe.base) << text;
+  EXPECT_EQ(back.clahe.gain, custom.clahe.gain);
+  EXPECT_EQ(back.clahe.sigma_max, custom.clahe.sigma_max) << text;
+  EXPECT_EQ(back.clahe.d_max, custom.clahe.d_max) << text;
+  EXPECT_EQ(back.toSettingsText(), text);
+}
+
 TEST(EnhanceSettings, WrongValuesNameTheFileAndKey) {
   const auto expectError = [](const std::string& yaml, const std::string& key) {
     try {

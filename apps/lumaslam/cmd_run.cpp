@@ -104,9 +104,9 @@ const bool registered = registerCommand(
       auto report = std::make_shared<bool>(false);
       auto print_settings = std::make_shared<bool>(false);
       cmd.add_flag("--print-settings", *print_settings,
-                   "Print the settings the run would use (Camera, ORBextractor, System, "
-                   "Enhancement, Detector, Tracking, Initializer, Dynamic, LocalMapping, Loop; "
-                   "docs/settings.md) and exit");
+                   "Print the settings the run would use (Camera, Camera2, Stereo, RGBD, "
+                   "ORBextractor, System, Enhancement, Detector, Tracking, Initializer, Dynamic, "
+                   "LocalMapping, Loop; docs/settings.md) as a settings file and exit");
       cmd.add_flag("--report", *report,
                    "At the end, write OUT/report.html (`lumaslam report OUT`, docs/report.md)");
       auto print_command = std::make_shared<bool>(false);

@@ -87,11 +87,11 @@ std::string effectiveSettings(const io::Settings& settings, const PipelineOption
       options.motion_evidence.value_or(settings.dynamic.motionEvidenceFor(settings.sensor));
   const auto orb =
       settings.file ? feature::OrbSettings::fromSettings(*settings.file) : feature::OrbSettings{};
-  core::SectionPrinter system("System");
-  system("sensor", std::string(io::toString(settings.sensor)));
-  system("sequential", sequential);
+  io::SystemSettings system = settings.system;
+  system.sequential = sequential;
   const auto detector = detect::detectorParamsFor(settings.file.get(), options.detector);
-  return io::printCameraSettings(settings.camera) + orb.settingsLines() + system.text() +
+  return io::printCameraSettings(settings.camera) + io::printStereoSettings(settings) +
+         orb.settingsLines() + io::printSystemSettings(settings.sensor, system) +
          enhancerParamsFor(settings, options).toSettingsText() +
          (detector ? detector->settingsLines() : "Detector.type: \"none\"\n") +
          printStageParams(stageParamsFor(settings, sequential, motion_evidence));

@@ -30,9 +30,10 @@ enhance::EnhancerParams enhancerParamsFor(const io::Settings& settings,
                                           const PipelineOptions& options);
 
 // What a Pipeline built from `settings` and `options` runs with, as settings-file lines that
-// read back to the same values: ORBextractor.*, System.sequential, Enhancement.* and the stage
-// sections (Tracking.*, Initializer.*, Dynamic.*, LocalMapping.*, Loop.*) (`lumaslam run
-// --print-settings`).
+// read back to the same values: Camera.*/Camera1.*, for stereo and RGB-D Camera2.*, Stereo.*
+// and RGBD.*, ORBextractor.*, System.*, Enhancement.*, Detector.* and the stage sections
+// (Tracking.*, Initializer.*, Dynamic.*, LocalMapping.*, Loop.*) (`lumaslam run
+// --print-settings`); for a stereo or RGB-D file they are a complete settings file.
 std::string effectiveSettings(const io::Settings& settings, const PipelineOptions& options);
 
 }  // namespace lumaslam

@@ -195,13 +195,13 @@ std::string EnhancerParams::toSettingsText() const {
       "Enhancement.clahe.tilesX: {}\n"
       "Enhancement.clahe.tilesY: {}\n"
       "Enhancement.clahe.limitMode: \"{}\"\n"
-      "Enhancement.clahe.fixedLimit: {:.6f}\n"
-      "Enhancement.clahe.base: {:.6f}\n"
-      "Enhancement.clahe.gain: {:.6f}\n"
+      "Enhancement.clahe.fixedLimit: {}\n"
+      "Enhancement.clahe.base: {}\n"
+      "Enhancement.clahe.gain: {}\n"
       "Enhancement.clahe.sigma: \"{}\"\n"
       "Enhancement.clahe.maxima: \"{}\"\n"
-      "Enhancement.clahe.sigmaMax: {:.6f}\n"
-      "Enhancement.clahe.dMax: {:.6f}\n",
+      "Enhancement.clahe.sigmaMax: {}\n"
+      "Enhancement.clahe.dMax: {}\n",
       preset, int(gate.enabled), gate.epsilon, gate.theta, int(compensation.enabled),
       compensation.alpha, compensation.beta, nameOf(kWeightNames, compensation.weights),
       nameOf(kChannelNames, channel), nameOf(kStereoNames, stereo), int(c.enabled), c.tiles_x,

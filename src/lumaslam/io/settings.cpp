@@ -7,6 +7,7 @@
 #include <Eigen/Core>
 
 #include "lumaslam/core/error.h"
+#include "lumaslam/core/settings_section.h"
 
 namespace lumaslam::io {
 namespace {
@@ -254,11 +255,18 @@ void warnAboutRetiredKeys(const KeyReader& in) {
   }
 }
 
+// The System.* keys read over the defaults and printed by printSystemSettings.
+template <typename Keys>
+void visitSystemKeys(Keys& keys, SystemSettings& system) {
+  keys("sequential", system.sequential);
+  keys("newMapAfter", system.newMapAfter);  // negative: stay lost
+}
+
 SystemSettings readSystem(const KeyReader& in) {
   SystemSettings system;
-  system.sequential = in.get<bool>({"System.sequential"}, false);
+  core::readSection(in.file(), "System", system,
+                    [](auto& keys, auto& s) { visitSystemKeys(keys, s); });
   warnAboutRetiredKeys(in);
-  system.newMapAfter = in.get<double>({"System.newMapAfter"}, system.newMapAfter);
   if (const auto root = in.find<std::string>({"System.datasetRoot"})) {
     if (root->empty()) in.file().invalid("System.datasetRoot", "must not be empty");
     system.datasetRoot = *root;
@@ -289,6 +297,14 @@ void checkFileVersion(const KeyReader& in) {
 }
 
 }  // namespace
+
+std::string printSystemSettings(SensorType sensor, const SystemSettings& system) {
+  core::SectionPrinter keys("System");
+  keys("sensor", std::string(toString(sensor)));
+  SystemSettings copy = system;
+  visitSystemKeys(keys, copy);
+  return keys.text();
+}
 
 std::string_view toString(SensorType sensor) {
   switch (sensor) {

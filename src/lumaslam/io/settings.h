@@ -126,6 +126,10 @@ struct Settings {
                            std::optional<SensorType> sensor = std::nullopt);
 };
 
+// System.sensor, System.sequential and System.newMapAfter as settings lines that fromFile reads
+// back (`lumaslam run --print-settings`); System.datasetRoot is not printed.
+std::string printSystemSettings(SensorType sensor, const SystemSettings& system);
+
 // Opens `path` and parses it; a relative System.datasetRoot or Loop.vocabulary is resolved
 // against its folder.
 Settings loadSettings(const std::filesystem::path& path,
