@@ -128,6 +128,8 @@ class Scene {
   const cv::Mat& lightmap(int index) const { return lightmaps_[static_cast<size_t>(index)]; }
 
  private:
+  friend class SceneBuilder;  // Scene::build's steps
+
   struct LinearPath {  // back and forth between a and b on the floor
     Eigen::Vector2f a, b;
     float speed = 1.0f;
