@@ -132,91 +132,120 @@ Eigen::Vector3d CameraTrajectory::viewDirection() const {
 
 SE3 CameraTrajectory::pose(double real_t) const {
   const double t = kind_ == TrajectoryKind::Loop ? real_t : real_t * speed_;
-  Eigen::Vector3d position = kOrigin;
-  double yaw = 0, pitch = 0, roll = 0;
-  const Eigen::Vector3d& ph = phases_;
-  switch (kind_) {
-    case TrajectoryKind::Static: {
-      position +=
-          Eigen::Vector3d(0.004 * std::sin(0.3 * t + ph.x()), 0.004 * std::sin(0.23 * t + ph.y()),
-                          0.003 * std::sin(0.37 * t + ph.z()));
-      lookAt(position, kTarget, yaw, pitch);
-      break;
-    }
-    case TrajectoryKind::Xyz: {
-      // Peak speed ~0.35 m/s, mean ~0.25 m/s; eases in from rest over the first second.
-      const double ease = t < 1.0 ? t * t * (3.0 - 2.0 * t) : 1.0;
-      position +=
-          ease * Eigen::Vector3d(0.28 * std::sin(1.05 * t + ph.x()) - 0.28 * std::sin(ph.x()),
-                                 0.22 * std::sin(0.8 * t + ph.y()) - 0.22 * std::sin(ph.y()),
-                                 0.14 * std::sin(1.3 * t + ph.z()) - 0.14 * std::sin(ph.z()));
-      lookAt(position,
-             kTarget + Eigen::Vector3d(0.3 * std::sin(0.4 * t), 0.0, 0.1 * std::sin(0.5 * t)), yaw,
-             pitch);
-      roll = 3.0 * kDeg * std::sin(0.6 * t + ph.x());
-      break;
-    }
-    case TrajectoryKind::Rpy: {
-      const double ease = t < 1.0 ? t * t * (3.0 - 2.0 * t) : 1.0;
-      position += ease * Eigen::Vector3d(0.03 * std::sin(0.7 * t), 0.02 * std::sin(0.5 * t),
-                                         0.02 * std::sin(0.9 * t));
-      lookAt(position, kTarget, yaw, pitch);
-      // Peak angular rates ~45-60 deg/s per axis.
-      yaw += ease * 28.0 * kDeg * (std::sin(1.9 * t + ph.x()) - std::sin(ph.x()));
-      pitch += ease * 15.0 * kDeg * (std::sin(2.3 * t + ph.y()) - std::sin(ph.y()));
-      roll = ease * 22.0 * kDeg * (std::sin(2.1 * t + ph.z()) - std::sin(ph.z()));
-      break;
-    }
-    case TrajectoryKind::Halfsphere: {
-      // On a sphere of radius 0.6 m around the working point, ~0.3 m/s.
-      const double ease = t < 1.0 ? t * t * (3.0 - 2.0 * t) : 1.0;
-      const double azimuth =
-          ease * 1.1 * std::sin(0.45 * t + ph.x()) - 1.1 * std::sin(ph.x()) * ease;
-      const double elevation = 0.35 + ease * 0.3 * std::sin(0.6 * t + ph.y());
-      const Eigen::Vector3d centre = kOrigin + Eigen::Vector3d(0.0, 0.6, -0.2);
-      position = centre + 0.6 * Eigen::Vector3d(std::sin(azimuth) * std::cos(elevation),
-                                                -std::cos(azimuth) * std::cos(elevation),
-                                                std::sin(elevation));
-      lookAt(position, kTarget, yaw, pitch);
-      roll = 4.0 * kDeg * std::sin(0.5 * t + ph.z());
-      break;
-    }
-    case TrajectoryKind::Loop: {
-      // One lap of an ellipse in `duration_` seconds, heading outwards; closes exactly.
-      const double s = 2.0 * kPi * t / duration_;
-      position =
-          Eigen::Vector3d(1.0 * std::sin(s), -0.7 * std::cos(s), 1.3 + 0.08 * std::sin(2.0 * s));
-      yaw = s + kPi;  // facing away from the centre (towards -y at s = 0)
-      yaw += 0.25 * std::sin(s);
-      pitch = -10.0 * kDeg +
-              4.0 * kDeg * std::sin(3.0 * s);  // slightly down: floor and furniture in view
-      roll = 3.0 * kDeg * std::sin(2.0 * s);
-      break;
-    }
-    case TrajectoryKind::Handheld: {
-      // Sweeps over the desk-like scene in front (TUM fr1 desk: 0.41 m/s, 23 deg/s on
-      // average): yaw peaks at ~55 deg/s, pitch ~40, roll ~20, plus the quick turns.
-      const double ease = t < 1.0 ? t * t * (3.0 - 2.0 * t) : 1.0;
-      const auto sweep = [&](double amplitude, double rate, double phase) {
-        return amplitude * (std::sin(rate * t + phase) - std::sin(phase));
-      };
-      position += ease * Eigen::Vector3d(sweep(0.45, 0.9, ph.x()), sweep(0.25, 0.7, ph.y()),
-                                         sweep(0.15, 1.1, ph.z()));
-      lookAt(position, kTarget, yaw, pitch);
-      yaw += ease * (sweep(20.0 * kDeg, 1.6, ph.y()) + sweep(8.0 * kDeg, 3.1, ph.z()));
-      pitch += ease * (sweep(12.0 * kDeg, 2.0, ph.z()) + sweep(5.0 * kDeg, 3.7, ph.x()));
-      roll = ease * (sweep(8.0 * kDeg, 1.3, ph.x()) + sweep(3.0 * kDeg, 4.1, ph.y()));
-      for (const Turn& turn : turns_) (turn.axis == 0 ? yaw : pitch) += turn.at(t);
-      break;
-    }
-  }
-  position += position_tremor_.at(t) - position_tremor_.at(0.0);
+  Motion m = motion(t);
+  m.position += position_tremor_.at(t) - position_tremor_.at(0.0);
   const Eigen::Vector3d tremor = angle_tremor_.at(t) - angle_tremor_.at(0.0);
-  yaw += tremor.x(), pitch += tremor.y(), roll += tremor.z();
+  m.yaw += tremor.x(), m.pitch += tremor.y(), m.roll += tremor.z();
   SE3 T_w_c = SE3::Identity();
-  T_w_c.linear() = orientation(yaw, pitch, roll);
-  T_w_c.translation() = position;
+  T_w_c.linear() = orientation(m.yaw, m.pitch, m.roll);
+  T_w_c.translation() = m.position;
   return T_w_c;
+}
+
+CameraTrajectory::Motion CameraTrajectory::motion(double t) const {
+  switch (kind_) {
+    case TrajectoryKind::Static:
+      return staticMotion(t);
+    case TrajectoryKind::Xyz:
+      return xyzMotion(t);
+    case TrajectoryKind::Rpy:
+      return rpyMotion(t);
+    case TrajectoryKind::Halfsphere:
+      return halfsphereMotion(t);
+    case TrajectoryKind::Loop:
+      return loopMotion(t);
+    case TrajectoryKind::Handheld:
+      return handheldMotion(t);
+  }
+  return {kOrigin};
+}
+
+CameraTrajectory::Motion CameraTrajectory::staticMotion(double t) const {
+  const Eigen::Vector3d& ph = phases_;
+  Motion m{kOrigin};
+  m.position +=
+      Eigen::Vector3d(0.004 * std::sin(0.3 * t + ph.x()), 0.004 * std::sin(0.23 * t + ph.y()),
+                      0.003 * std::sin(0.37 * t + ph.z()));
+  lookAt(m.position, kTarget, m.yaw, m.pitch);
+  return m;
+}
+
+// Peak speed ~0.35 m/s, mean ~0.25 m/s; eases in from rest over the first second.
+CameraTrajectory::Motion CameraTrajectory::xyzMotion(double t) const {
+  const Eigen::Vector3d& ph = phases_;
+  Motion m{kOrigin};
+  const double ease = t < 1.0 ? t * t * (3.0 - 2.0 * t) : 1.0;
+  m.position += ease * Eigen::Vector3d(0.28 * std::sin(1.05 * t + ph.x()) - 0.28 * std::sin(ph.x()),
+                                       0.22 * std::sin(0.8 * t + ph.y()) - 0.22 * std::sin(ph.y()),
+                                       0.14 * std::sin(1.3 * t + ph.z()) - 0.14 * std::sin(ph.z()));
+  lookAt(m.position,
+         kTarget + Eigen::Vector3d(0.3 * std::sin(0.4 * t), 0.0, 0.1 * std::sin(0.5 * t)), m.yaw,
+         m.pitch);
+  m.roll = 3.0 * kDeg * std::sin(0.6 * t + ph.x());
+  return m;
+}
+
+CameraTrajectory::Motion CameraTrajectory::rpyMotion(double t) const {
+  const Eigen::Vector3d& ph = phases_;
+  Motion m{kOrigin};
+  const double ease = t < 1.0 ? t * t * (3.0 - 2.0 * t) : 1.0;
+  m.position += ease * Eigen::Vector3d(0.03 * std::sin(0.7 * t), 0.02 * std::sin(0.5 * t),
+                                       0.02 * std::sin(0.9 * t));
+  lookAt(m.position, kTarget, m.yaw, m.pitch);
+  // Peak angular rates ~45-60 deg/s per axis.
+  m.yaw += ease * 28.0 * kDeg * (std::sin(1.9 * t + ph.x()) - std::sin(ph.x()));
+  m.pitch += ease * 15.0 * kDeg * (std::sin(2.3 * t + ph.y()) - std::sin(ph.y()));
+  m.roll = ease * 22.0 * kDeg * (std::sin(2.1 * t + ph.z()) - std::sin(ph.z()));
+  return m;
+}
+
+// On a sphere of radius 0.6 m around the working point, ~0.3 m/s.
+CameraTrajectory::Motion CameraTrajectory::halfsphereMotion(double t) const {
+  const Eigen::Vector3d& ph = phases_;
+  Motion m{kOrigin};
+  const double ease = t < 1.0 ? t * t * (3.0 - 2.0 * t) : 1.0;
+  const double azimuth = ease * 1.1 * std::sin(0.45 * t + ph.x()) - 1.1 * std::sin(ph.x()) * ease;
+  const double elevation = 0.35 + ease * 0.3 * std::sin(0.6 * t + ph.y());
+  const Eigen::Vector3d centre = kOrigin + Eigen::Vector3d(0.0, 0.6, -0.2);
+  m.position =
+      centre + 0.6 * Eigen::Vector3d(std::sin(azimuth) * std::cos(elevation),
+                                     -std::cos(azimuth) * std::cos(elevation), std::sin(elevation));
+  lookAt(m.position, kTarget, m.yaw, m.pitch);
+  m.roll = 4.0 * kDeg * std::sin(0.5 * t + ph.z());
+  return m;
+}
+
+// One lap of an ellipse in `duration_` seconds, heading outwards; closes exactly.
+CameraTrajectory::Motion CameraTrajectory::loopMotion(double t) const {
+  Motion m{kOrigin};
+  const double s = 2.0 * kPi * t / duration_;
+  m.position =
+      Eigen::Vector3d(1.0 * std::sin(s), -0.7 * std::cos(s), 1.3 + 0.08 * std::sin(2.0 * s));
+  m.yaw = s + kPi;  // facing away from the centre (towards -y at s = 0)
+  m.yaw += 0.25 * std::sin(s);
+  m.pitch =
+      -10.0 * kDeg + 4.0 * kDeg * std::sin(3.0 * s);  // slightly down: floor and furniture in view
+  m.roll = 3.0 * kDeg * std::sin(2.0 * s);
+  return m;
+}
+
+// Sweeps over the desk-like scene in front (TUM fr1 desk: 0.41 m/s, 23 deg/s on average): yaw
+// peaks at ~55 deg/s, pitch ~40, roll ~20, plus the quick turns.
+CameraTrajectory::Motion CameraTrajectory::handheldMotion(double t) const {
+  const Eigen::Vector3d& ph = phases_;
+  Motion m{kOrigin};
+  const double ease = t < 1.0 ? t * t * (3.0 - 2.0 * t) : 1.0;
+  const auto sweep = [&](double amplitude, double rate, double phase) {
+    return amplitude * (std::sin(rate * t + phase) - std::sin(phase));
+  };
+  m.position += ease * Eigen::Vector3d(sweep(0.45, 0.9, ph.x()), sweep(0.25, 0.7, ph.y()),
+                                       sweep(0.15, 1.1, ph.z()));
+  lookAt(m.position, kTarget, m.yaw, m.pitch);
+  m.yaw += ease * (sweep(20.0 * kDeg, 1.6, ph.y()) + sweep(8.0 * kDeg, 3.1, ph.z()));
+  m.pitch += ease * (sweep(12.0 * kDeg, 2.0, ph.z()) + sweep(5.0 * kDeg, 3.7, ph.x()));
+  m.roll = ease * (sweep(8.0 * kDeg, 1.3, ph.x()) + sweep(3.0 * kDeg, 4.1, ph.y()));
+  for (const Turn& turn : turns_) (turn.axis == 0 ? m.yaw : m.pitch) += turn.at(t);
+  return m;
 }
 
 }  // namespace lumaslam::synth

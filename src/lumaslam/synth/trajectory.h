@@ -54,6 +54,19 @@ class CameraTrajectory {
   };
   static std::vector<Turn> planTurns(double duration_s, std::uint64_t seed);
 
+  // Position and angles (see orientation() in trajectory.cpp) before the tremor.
+  struct Motion {
+    Eigen::Vector3d position;
+    double yaw = 0.0, pitch = 0.0, roll = 0.0;
+  };
+  Motion motion(double t) const;  // t: trajectory time (scaled by speed_ except for the loop)
+  Motion staticMotion(double t) const;
+  Motion xyzMotion(double t) const;
+  Motion rpyMotion(double t) const;
+  Motion halfsphereMotion(double t) const;
+  Motion loopMotion(double t) const;
+  Motion handheldMotion(double t) const;
+
   TrajectoryKind kind_;
   double duration_;
   double speed_;
