@@ -169,6 +169,108 @@ void collectCandidates(const ViewSetup& setup, int y, RowCandidates& c) {
       c.walkers_in_row.push_back(i);
 }
 
+// Where a ray (direction d with unit camera-z, inv its componentwise inverse) leaves the room.
+Hit roomExit(const BoxInstance& room, const Eigen::Vector3f& origin, const Eigen::Vector3f& d,
+             const Eigen::Vector3f& inv) {
+  Hit hit;
+  for (int a = 0; a < 3; ++a) {
+    const float plane = d[a] > 0.0f ? room.hi[a] : room.lo[a];
+    const float t = (plane - origin[a]) * inv[a];
+    if (t > 0.0f && t < hit.t) hit = {t, 0, 0, a * 2 + (d[a] > 0.0f ? 1 : 0)};
+  }
+  return hit;
+}
+
+// Replaces `hit` by the nearest box of pixel x's block in front of it.
+void hitBoxes(const SceneSnapshot& snapshot, const ViewSetup& setup,
+              const RowCandidates& candidates, int x, const Eigen::Vector3f& d,
+              const Eigen::Vector3f& inv, Hit& hit) {
+  const Eigen::Vector3f& origin = setup.origin;
+  for (const int i : candidates.boxes_in_block[static_cast<size_t>(x / kBlock)]) {
+    const ScreenRect& r = setup.box_rects[static_cast<size_t>(i)];
+    if (r.near_z >= hit.t) break;  // this and every later box lie behind the hit
+    if (x < r.x0 || x > r.x1) continue;
+    const BoxInstance& box = snapshot.boxes[static_cast<size_t>(i)];
+    float t_near = 0.0f, t_far = hit.t;
+    int near_axis = -1;
+    bool miss = false;
+    for (int a = 0; a < 3 && !miss; ++a) {
+      float t0 = (box.lo[a] - origin[a]) * inv[a];
+      float t1 = (box.hi[a] - origin[a]) * inv[a];
+      if (t0 > t1) std::swap(t0, t1);
+      if (t0 > t_near) t_near = t0, near_axis = a;
+      t_far = std::min(t_far, t1);
+      miss = t_near > t_far;
+    }
+    if (miss || near_axis < 0 || t_near >= hit.t) continue;
+    hit = {t_near, 1, i, near_axis * 2 + (d[near_axis] > 0.0f ? 0 : 1)};
+  }
+}
+
+// Replaces `hit` by the nearest walker of the row in front of it, with its texture coordinates.
+void hitWalkers(const Scene& scene, const SceneSnapshot& snapshot, const ViewSetup& setup,
+                const RowCandidates& candidates, int x, const Eigen::Vector3f& d, Hit& hit,
+                WalkerTexel& walker_texel) {
+  const Eigen::Vector3f& origin = setup.origin;
+  for (const int i : candidates.walkers_in_row) {
+    const ScreenRect& r = setup.walker_rects[static_cast<size_t>(i)];
+    if (x < r.x0 || x > r.x1) continue;
+    const WalkerInstance& w = snapshot.walkers[static_cast<size_t>(i)];
+    const float denom = d.dot(w.normal);
+    if (std::abs(denom) < 1e-6f) continue;
+    const float t = (w.base - origin).dot(w.normal) / denom;
+    if (t <= 0.0f || t >= hit.t) continue;
+    const Eigen::Vector3f p = origin + t * d - w.base;
+    const float u = p.dot(w.right), v = p.z();
+    if (!scene.walkerCovers(w, u, v, walker_texel)) continue;
+    hit = {t, 2, i, 0};
+  }
+}
+
+// What the renderer needs of the surface at a hit.
+struct Surface {
+  cv::Vec3f albedo;
+  Eigen::Vector3f normal;
+  std::uint8_t id = 0;
+  float light = -1.0f;  // baked light if the face has a lightmap
+  float view_cosine = 1.0f;
+};
+
+Surface walkerSurface(const Scene& scene, const WalkerInstance& w, const Eigen::Vector3f& d,
+                      float ray_length, float pixel_size, const WalkerTexel& walker_texel) {
+  Surface s;
+  s.view_cosine = std::abs(d.dot(w.normal)) / ray_length;
+  const float cosine = std::max(0.2f, s.view_cosine);
+  s.albedo = scene.texture(w.texture).sample(walker_texel.u, walker_texel.v,
+                                             pixel_size / std::sqrt(cosine));
+  s.normal = w.normal;
+  s.id = w.object_id;
+  return s;
+}
+
+Surface boxSurface(const Scene& scene, const SceneSnapshot& snapshot, const Hit& hit,
+                   const Eigen::Vector3f& p, const Eigen::Vector3f& d, float ray_length,
+                   float pixel_size) {
+  Surface s;
+  const BoxInstance& box =
+      hit.kind == 0 ? snapshot.room : snapshot.boxes[static_cast<size_t>(hit.index)];
+  const int axis = hit.face / 2;
+  s.normal = Eigen::Vector3f::Zero();
+  // Room faces point into the room, box faces out of the box.
+  s.normal[axis] = (hit.face % 2 == 1) == (hit.kind == 0) ? -1.0f : 1.0f;
+  float u = 0.0f, v = 0.0f;
+  faceUv(box, hit.face, p, u, v);
+  // Geometric mean of the footprint's two axes: little blur, little aliasing.
+  s.view_cosine = std::abs(d[axis]) / ray_length;
+  const float cosine = std::max(0.05f, s.view_cosine);
+  s.albedo = scene.texture(box.textures[static_cast<size_t>(hit.face)])
+                 .sample(u, v, pixel_size / std::sqrt(cosine));
+  s.id = box.object_id;
+  const int lightmap = box.lightmaps[static_cast<size_t>(hit.face)];
+  if (lightmap >= 0) s.light = lightmapSample(scene.lightmap(lightmap), u, v);
+  return s;
+}
+
 void renderRow(const Scene& scene, const SceneSnapshot& snapshot, const PinholeCamera& cam,
                const ViewSetup& setup, int y, RowCandidates& candidates, RenderedView& view) {
   collectCandidates(setup, y, candidates);
@@ -186,93 +288,28 @@ void renderRow(const Scene& scene, const SceneSnapshot& snapshot, const PinholeC
     // Ray with unit camera-z component, so the hit parameter t is the z-depth.
     const Eigen::Vector3f d = row_dir + R_w_c.col(0) * ((static_cast<float>(x) - cx) / fx);
     const Eigen::Vector3f inv(1.0f / d.x(), 1.0f / d.y(), 1.0f / d.z());
-    Hit hit;
-    {  // the room, from inside: nearest exit plane
-      const BoxInstance& room = snapshot.room;
-      for (int a = 0; a < 3; ++a) {
-        const float plane = d[a] > 0.0f ? room.hi[a] : room.lo[a];
-        const float t = (plane - origin[a]) * inv[a];
-        if (t > 0.0f && t < hit.t) hit = {t, 0, 0, a * 2 + (d[a] > 0.0f ? 1 : 0)};
-      }
-    }
-    for (const int i : candidates.boxes_in_block[static_cast<size_t>(x / kBlock)]) {
-      const ScreenRect& r = setup.box_rects[static_cast<size_t>(i)];
-      if (r.near_z >= hit.t) break;  // this and every later box lie behind the hit
-      if (x < r.x0 || x > r.x1) continue;
-      const BoxInstance& box = snapshot.boxes[static_cast<size_t>(i)];
-      float t_near = 0.0f, t_far = hit.t;
-      int near_axis = -1;
-      bool miss = false;
-      for (int a = 0; a < 3 && !miss; ++a) {
-        float t0 = (box.lo[a] - origin[a]) * inv[a];
-        float t1 = (box.hi[a] - origin[a]) * inv[a];
-        if (t0 > t1) std::swap(t0, t1);
-        if (t0 > t_near) t_near = t0, near_axis = a;
-        t_far = std::min(t_far, t1);
-        miss = t_near > t_far;
-      }
-      if (miss || near_axis < 0 || t_near >= hit.t) continue;
-      hit = {t_near, 1, i, near_axis * 2 + (d[near_axis] > 0.0f ? 0 : 1)};
-    }
+    Hit hit = roomExit(snapshot.room, origin, d, inv);
+    hitBoxes(snapshot, setup, candidates, x, d, inv, hit);
     WalkerTexel walker_texel;
-    for (const int i : candidates.walkers_in_row) {
-      const ScreenRect& r = setup.walker_rects[static_cast<size_t>(i)];
-      if (x < r.x0 || x > r.x1) continue;
-      const WalkerInstance& w = snapshot.walkers[static_cast<size_t>(i)];
-      const float denom = d.dot(w.normal);
-      if (std::abs(denom) < 1e-6f) continue;
-      const float t = (w.base - origin).dot(w.normal) / denom;
-      if (t <= 0.0f || t >= hit.t) continue;
-      const Eigen::Vector3f p = origin + t * d - w.base;
-      const float u = p.dot(w.right), v = p.z();
-      if (!scene.walkerCovers(w, u, v, walker_texel)) continue;
-      hit = {t, 2, i, 0};
-    }
+    hitWalkers(scene, snapshot, setup, candidates, x, d, hit, walker_texel);
 
     const Eigen::Vector3f p = origin + hit.t * d;
     const float ray_length = d.norm();
     const float pixel_size = hit.t * ray_length * ray_length / fx;  // on a fronto-parallel plane
-    cv::Vec3f albedo;
-    Eigen::Vector3f normal;
-    std::uint8_t id = 0;
-    float light = -1.0f;  // baked light if the face has a lightmap
-    float view_cosine = 1.0f;
-    if (hit.kind == 2) {
-      const WalkerInstance& w = snapshot.walkers[static_cast<size_t>(hit.index)];
-      view_cosine = std::abs(d.dot(w.normal)) / ray_length;
-      const float cosine = std::max(0.2f, view_cosine);
-      albedo = scene.texture(w.texture).sample(walker_texel.u, walker_texel.v,
-                                               pixel_size / std::sqrt(cosine));
-      normal = w.normal;
-      id = w.object_id;
-    } else {
-      const BoxInstance& box =
-          hit.kind == 0 ? snapshot.room : snapshot.boxes[static_cast<size_t>(hit.index)];
-      const int axis = hit.face / 2;
-      normal = Eigen::Vector3f::Zero();
-      // Room faces point into the room, box faces out of the box.
-      normal[axis] = (hit.face % 2 == 1) == (hit.kind == 0) ? -1.0f : 1.0f;
-      float u = 0.0f, v = 0.0f;
-      faceUv(box, hit.face, p, u, v);
-      // Geometric mean of the footprint's two axes: little blur, little aliasing.
-      view_cosine = std::abs(d[axis]) / ray_length;
-      const float cosine = std::max(0.05f, view_cosine);
-      albedo = scene.texture(box.textures[static_cast<size_t>(hit.face)])
-                   .sample(u, v, pixel_size / std::sqrt(cosine));
-      id = box.object_id;
-      const int lightmap = box.lightmaps[static_cast<size_t>(hit.face)];
-      if (lightmap >= 0) light = lightmapSample(scene.lightmap(lightmap), u, v);
-    }
-    if (light < 0.0f) light = staticLighting(snapshot.lights, snapshot.ambient, p, normal);
-    if (snapshot.spot) light += spotLighting(*snapshot.spot, p, normal);
+    Surface s = hit.kind == 2
+                    ? walkerSurface(scene, snapshot.walkers[static_cast<size_t>(hit.index)], d,
+                                    ray_length, pixel_size, walker_texel)
+                    : boxSurface(scene, snapshot, hit, p, d, ray_length, pixel_size);
+    if (s.light < 0.0f) s.light = staticLighting(snapshot.lights, snapshot.ambient, p, s.normal);
+    if (snapshot.spot) s.light += spotLighting(*snapshot.spot, p, s.normal);
     // Textures are display-encoded (gamma ~2): square to linear reflectance.
-    const cv::Vec3f reflectance(albedo[0] * albedo[0], albedo[1] * albedo[1],
-                                albedo[2] * albedo[2]);
-    radiance[x] = reflectance * light;
+    const cv::Vec3f reflectance(s.albedo[0] * s.albedo[0], s.albedo[1] * s.albedo[1],
+                                s.albedo[2] * s.albedo[2]);
+    radiance[x] = reflectance * s.light;
     depth[x] = hit.t;
-    ids[x] = id;
+    ids[x] = s.id;
     ir_albedo[x] = (reflectance[0] + reflectance[1] + reflectance[2]) * (1.0f / 3.0f);
-    incidence[x] = view_cosine;
+    incidence[x] = s.view_cosine;
   }
 }
 
