@@ -39,6 +39,7 @@ DepthSensorModel kinectV1Depth() {
   return d;
 }
 
+// A data table, one entry per preset (kept as one function, longer than 80 lines).
 std::vector<Preset> buildPresets() {
   using enum SensorKind;
   using enum TrajectoryKind;
