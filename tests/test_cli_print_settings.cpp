@@ -3,6 +3,7 @@
 // dataset is opened and nothing is run.
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <fstream>
 #include <string>
 
@@ -22,6 +23,20 @@ std::string printed(const std::string& config, const std::string& flags = "") {
   const auto start = result.output.find("%YAML:1.0");
   EXPECT_NE(start, std::string::npos) << result.output;
   return start == std::string::npos ? "" : result.output.substr(start);
+}
+
+// Writes `text` (printed settings) to FILE, prints the settings of FILE, and expects the same
+// lines again (the comment naming the file aside).
+void expectPrintsTheSameAgain(const std::string& text, const std::filesystem::path& file) {
+  std::ofstream(file) << text;
+  const auto result =
+      runCli("run --dataset tum:/nowhere --settings " + file.string() + " --print-settings");
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  const auto body = [](const std::string& s) {
+    const auto from = s.find("\nCamera.");
+    return from == std::string::npos ? s : s.substr(from);
+  };
+  EXPECT_EQ(body(result.output.substr(result.output.find("%YAML:1.0"))), body(text)) << file;
 }
 
 TEST(CliPrintSettings, ShowsTheSensorDefaultsOfAMonocularFile) {
@@ -51,17 +66,8 @@ TEST(CliPrintSettings, ShowsEverySection) {
 // every printed section): given as --settings, they print the same lines again.
 TEST(CliPrintSettings, PrintedSettingsPrintTheSameAgain) {
   lumaslam::test::TempDir dir("print_settings_again");
-  const auto again = dir.path() / "again.yaml";
-  const std::string text = printed("kitti_04-12_mono.yaml", "--sequential --no-motion-evidence");
-  std::ofstream(again) << text;
-  const auto result =
-      runCli("run --dataset tum:/nowhere --settings " + again.string() + " --print-settings");
-  ASSERT_EQ(result.exit_code, 0) << result.output;
-  const auto body = [](const std::string& s) {  // without the comment naming the file
-    const auto from = s.find("\nCamera.");
-    return from == std::string::npos ? s : s.substr(from);
-  };
-  EXPECT_EQ(body(result.output.substr(result.output.find("%YAML:1.0"))), body(text));
+  expectPrintsTheSameAgain(printed("kitti_04-12_mono.yaml", "--sequential --no-motion-evidence"),
+                           dir.path() / "again.yaml");
 }
 
 TEST(CliPrintSettings, ABadNewKeyIsAnErrorNamingIt) {
@@ -117,17 +123,7 @@ TEST(CliPrintSettings, ShowsTheSecondCameraAndTheStereoKeys) {
 TEST(CliPrintSettings, PrintedStereoAndRgbdSettingsPrintTheSameAgain) {
   lumaslam::test::TempDir dir("print_settings_sensors");
   for (const char* config : {"euroc_stereo.yaml", "kitti_04-12_stereo.yaml", "tum_fr1_rgbd.yaml"}) {
-    const auto again = dir.path() / (std::string("again_") + config);
-    const std::string text = printed(config);
-    std::ofstream(again) << text;
-    const auto result =
-        runCli("run --dataset tum:/nowhere --settings " + again.string() + " --print-settings");
-    ASSERT_EQ(result.exit_code, 0) << result.output;
-    const auto body = [](const std::string& s) {  // without the comment naming the file
-      const auto from = s.find("\nCamera.");
-      return from == std::string::npos ? s : s.substr(from);
-    };
-    EXPECT_EQ(body(result.output.substr(result.output.find("%YAML:1.0"))), body(text)) << config;
+    expectPrintsTheSameAgain(printed(config), dir.path() / (std::string("again_") + config));
   }
 }
 
