@@ -84,7 +84,9 @@ void bindSystem(py::module_& module) {
 The SLAM system: build it from a settings file, feed it frames, get poses back.
 
 Every method may be called from any Python thread; tracking, saving and loading release the
-GIL. Frames are numbered by the System. Images: uint8 HxW (gray) or HxWx3 (BGR); depth:
+GIL. Frames are numbered by the System. Images: uint8 HxW (gray) or HxWx3, BGR when the
+settings say Camera.RGB: 0 (lumaslam.Dataset, cv2.imread), RGB when they say 1 (PIL, imageio);
+depth:
 uint16 (raw, divided by the settings' DepthMapFactor) or float32 metres. Timestamps are
 seconds, finite and increasing.)doc")
       .def(py::init([](const std::filesystem::path& settings, std::optional<bool> sequential,

@@ -34,7 +34,7 @@ cv::Mat imageFromArray(const py::array& array, const std::string& what) {
   const bool gray = array.ndim() == 2;
   const bool colour = array.ndim() == 3 && array.shape(2) == 3;
   if (!gray && !colour) {
-    throw py::value_error(what + ": expected an HxW (gray) or HxWx3 (BGR) image, got shape " +
+    throw py::value_error(what + ": expected an HxW (gray) or HxWx3 (colour) image, got shape " +
                           shapeOf(array));
   }
   if (!array.dtype().is(py::dtype::of<std::uint8_t>())) {

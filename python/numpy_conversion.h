@@ -1,7 +1,7 @@
 #pragma once
 // numpy arrays <-> cv::Mat and 4x4 poses for the Python module. Images come in as numpy
-// arrays (uint8 HxW or HxWx3 BGR, depth uint16 or float32 HxW) and are copied, so that
-// tracking can run without the GIL while Python may free or change the array.
+// arrays (uint8 HxW or HxWx3 in Camera.RGB's order, depth uint16 or float32 HxW) and are copied, so
+// that tracking can run without the GIL while Python may free or change the array.
 #include <string>
 
 #include <pybind11/numpy.h>

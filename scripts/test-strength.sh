@@ -22,16 +22,17 @@ mutations=(
   "motion-model|src/lumaslam/track/tracker.cpp|s/\(velocity_ && trackWithMotionModel\(\)\)/(false \&\& velocity_ \&\& trackWithMotionModel())/"
   "local-ba|src/lumaslam/mapping/local_mapper.cpp|s/if \(params_\.bundle_adjustment && /if (false \&\& params_.bundle_adjustment \&\& /"
   "rgb-bgr|src/lumaslam/core/gray_image.cpp|s/cv::COLOR_BGR2GRAY/cv::COLOR_RGB2GRAY/"
+  "camera-rgb-ignored|src/lumaslam/system.cpp|s/return core::inBgrOrder\(image, settings\.camera\.rgb\);/return image;/"
   "dynamic-removal|src/lumaslam/system.cpp|s/  if \(result\.dynamic_boxes\.empty\(\)\) return;/  return;/"
   "motion-first-pose|src/lumaslam/track/tracker.cpp|s/if \(count < params_\.min_confirmed_points\) \{/if (true) {/"
 )
 # The tests that guard accuracy, and the executables they need.
-test_regex='^System(Rgbd|Stereo|Mono|Handheld|Dynamic|DynamicMemory|DynamicRpy|LowLight|MotionEvidence)\.|RealRgbd|^CliRun\.|^GrayImage\.|^TrackingSteps\.'
+test_regex='^System(Rgbd|Stereo|Mono|Handheld|Dynamic|DynamicMemory|DynamicRpy|LowLight|MotionEvidence)\.|RealRgbd|^CliRun\.|^GrayImage\.|^TrackingSteps\.|^ApiColourOrder\.'
 targets=(lumaslam_cli test_system_rgbd test_system_stereo test_system_mono test_system_real_rgbd
          test_system_handheld test_system_dynamic test_system_dynamic_memory
          test_system_dynamic_rpy test_system_low_light test_cli_run_real_rgbd test_cli_run
          test_core_gray_image test_system_real_rgbd test_system_tracking_steps
-         test_system_motion_evidence)
+         test_system_motion_evidence test_api_colour_order)
 
 selected=("$@")
 wanted() {

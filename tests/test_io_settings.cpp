@@ -98,7 +98,7 @@ TEST(Settings, TumConfigsHoldTheDatasetCalibration) {
   EXPECT_DOUBLE_EQ(fr1.depth.depthMapFactor, 5000.0);
   EXPECT_NEAR(fr1.bf(), 40.0, 0.01);
   EXPECT_NEAR(fr1.closeDepth(), 40.0 * fr1.baseline(), 1e-12);
-  EXPECT_TRUE(fr1.camera.rgb);
+  EXPECT_FALSE(fr1.camera.rgb);  // BGR, as cv::imread and lumaslam::Dataset give
 
   const Settings fr3 = loadSettings(config("tum_fr3_mono.yaml"));
   EXPECT_EQ(fr3.sensor, SensorType::Monocular);
@@ -162,6 +162,14 @@ TEST(Settings, KittiConfigMatchesRealCalibAndImageSize) {
   const Settings mono = loadSettings(config("kitti_00-02_mono.yaml"));
   EXPECT_EQ(mono.sensor, SensorType::Monocular);
   EXPECT_NE(loadSettings(config("kitti_03_mono.yaml")).camera.fx, mono.camera.fx);
+}
+
+// Camera.RGB names the colour order of images handed to the System API; without it they are
+// BGR, as in ORB-SLAM3 (mbRGB = 0) and as cv::imread gives them.
+TEST(Settings, ColourOrderIsBgrUnlessCameraRgbSaysRgb) {
+  EXPECT_FALSE(parse(with(kMonoNew, "Camera.RGB:", "")).camera.rgb);
+  EXPECT_FALSE(parse(with(kMonoNew, "Camera.RGB:", "Camera.RGB: 0")).camera.rgb);
+  EXPECT_TRUE(parse(with(kMonoNew, "Camera.RGB:", "Camera.RGB: 1")).camera.rgb);
 }
 
 TEST(Settings, ReadsNewKeysWithDefaults) {

@@ -333,6 +333,17 @@ PipelineOptions pipelineOptionsOf(const RunOptions& options) {
   return pipeline;
 }
 
+// Camera.RGB is for callers of the System API, whose arrays may be RGB; this command decodes
+// image files with OpenCV, which always gives BGR. ORB-SLAM3's TUM files say 1, so say why it
+// changes nothing here instead of swapping the colours.
+void noteColourOrder(const io::Settings& settings, const std::filesystem::path& settings_path) {
+  if (!settings.camera.rgb) return;
+  spdlog::info(
+      "{}: Camera.RGB: 1 describes colour images handed to the System API; lumaslam run decodes "
+      "image files itself, in BGR order, so it does not apply (docs/settings.md)",
+      settings_path.string());
+}
+
 // Last: its presence says every result above was written.
 void writeManifest(const RunOptions& options, const std::string& status,
                    const std::string& save_error) {
@@ -357,6 +368,7 @@ int printEffectiveSettings(const RunOptions& options) {
 int runPipeline(const RunOptions& options) {
   const auto settings_path = settingsPathOf(options);
   const auto settings = io::loadSettings(settings_path);
+  noteColourOrder(settings, settings_path);
   io::ReaderOptions reader_options;
   reader_options.max_frames = options.max_frames;
   auto reader = io::openDataset(options.dataset, reader_options);

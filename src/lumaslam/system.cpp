@@ -5,6 +5,7 @@
 #include <mutex>
 
 #include "lumaslam/camera_pose_conversion.h"
+#include "lumaslam/core/bgr_order.h"
 #include "lumaslam/core/error.h"
 #include "lumaslam/io/settings.h"
 #include "lumaslam/pipeline.h"
@@ -118,6 +119,11 @@ struct System::Impl {
     return frame;
   }
 
+  // Camera.RGB describes the caller's images; every stage works in BGR order.
+  cv::Mat inBgrOrder(const cv::Mat& image) const {
+    return core::inBgrOrder(image, settings.camera.rgb);
+  }
+
   TrackResult track(const SensorFrame& frame) {
     const auto start = std::chrono::steady_clock::now();
     const FrameResult result = pipeline->track(frame);
@@ -150,22 +156,22 @@ Sensor System::sensor() const {
 TrackResult System::trackMonocular(const cv::Mat& image, double timestamp) {
   const std::scoped_lock lock(impl_->mutex);
   SensorFrame frame = impl_->numberedFrame(Sensor::Monocular, timestamp);
-  frame.image = image;
+  frame.image = impl_->inBgrOrder(image);
   return impl_->track(frame);
 }
 
 TrackResult System::trackStereo(const cv::Mat& left, const cv::Mat& right, double timestamp) {
   const std::scoped_lock lock(impl_->mutex);
   SensorFrame frame = impl_->numberedFrame(Sensor::Stereo, timestamp);
-  frame.image = left;
-  frame.right = right;
+  frame.image = impl_->inBgrOrder(left);
+  frame.right = impl_->inBgrOrder(right);
   return impl_->track(frame);
 }
 
 TrackResult System::trackRgbd(const cv::Mat& image, const cv::Mat& depth, double timestamp) {
   const std::scoped_lock lock(impl_->mutex);
   SensorFrame frame = impl_->numberedFrame(Sensor::Rgbd, timestamp);
-  frame.image = image;
+  frame.image = impl_->inBgrOrder(image);
   frame.depth = depth;
   return impl_->track(frame);
 }

@@ -69,9 +69,11 @@ class LUMASLAM_API System {
 
   Sensor sensor() const;
 
-  // Images: 8-bit gray or BGR. Depth: CV_16U raw (divided by the settings' DepthMapFactor) or
-  // CV_32F metres. Timestamps in seconds, finite and increasing. The images are not kept after
-  // the call returns. Calling the trackX of another sensor is an error.
+  // Images: 8-bit gray, or colour in the order the settings' Camera.RGB names: BGR (0, the
+  // default; cv::imread and lumaslam::Dataset give BGR) or RGB (1; converted to BGR). Depth: CV_16U
+  // raw (divided by the settings' DepthMapFactor) or CV_32F metres. Timestamps in seconds, finite
+  // and increasing. The images are not kept after the call returns. Calling the trackX of another
+  // sensor is an error.
   TrackResult trackMonocular(const cv::Mat& image, double timestamp);
   TrackResult trackStereo(const cv::Mat& left, const cv::Mat& right, double timestamp);
   TrackResult trackRgbd(const cv::Mat& image, const cv::Mat& depth, double timestamp);

@@ -89,7 +89,7 @@ void readImageFormat(const KeyReader& in, CameraSettings& camera) {
   in.requireAbove("Camera.height", camera.size.height, 0);
   camera.fps = in.get<double>({"Camera.fps"}, 30.0);
   in.requireAbove("Camera.fps", camera.fps, 0.0);
-  camera.rgb = in.get<bool>({"Camera.RGB"}, true);
+  camera.rgb = in.get<bool>({"Camera.RGB"}, false);
 
   const auto newWidth = in.find<int>({"Camera.newWidth"});
   const auto newHeight = in.find<int>({"Camera.newHeight"});

@@ -38,7 +38,9 @@ struct CameraSettings {
   ImageSize size;                     // size of the images as read from the dataset
   std::optional<ImageSize> resizeTo;  // Camera.newWidth/newHeight: images are resized first
   double fps = 30.0;
-  bool rgb = true;  // Camera.RGB: colour images are RGB (1) or BGR (0)
+  // Camera.RGB: colour images handed to the System API are RGB (1) or BGR (0, default, as
+  // ORB-SLAM3). Image files are decoded by OpenCV in BGR whatever the key says.
+  bool rgb = false;
 
   bool hasDistortion() const;
   // The calibration of the images after the optional resize (intrinsics scaled, resizeTo

@@ -264,13 +264,13 @@ std::string settingsYaml(const SequenceRenderer& sequence) {
       "Camera.width: {}\n"
       "Camera.height: {}\n"
       "Camera.fps: {:.1f}\n"
-      "Camera.RGB: {}\n"
+      // Colour images are written as image files: readers decode them in BGR (docs/settings.md).
+      "Camera.RGB: 0\n"
       "Camera.bf: {:.6f}\n"
       "ThDepth: {:.1f}\n",
       sequence.preset().name, sequence.seed(), sequence.preset().name, sequence.seed(),
       stereo ? "euroc" : "tum", stereo ? "Rectified" : "PinHole", c.fx, c.fy, c.cx, c.cy, c.width,
-      c.height, rig.fps, stereo ? 0 : 1, c.fx * (stereo ? rig.baseline_m : 0.075),
-      stereo ? 35.0 : 40.0);
+      c.height, rig.fps, c.fx * (stereo ? rig.baseline_m : 0.075), stereo ? 35.0 : 40.0);
   if (stereo) {
     const std::string K =
         fmt::format("[{}, 0.0, {}, 0.0, {}, {}, 0.0, 0.0, 1.0]", c.fx, c.cx, c.fy, c.cy);
