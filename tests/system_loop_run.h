@@ -35,6 +35,14 @@ struct LoopInput {
     // Second lap: frame k of the (N+1)-frame lap sits between frames k-1 and k of the first.
     return i < lap_frames ? lap.render(i) : second_lap.render(i - lap_frames + 1);
   }
+  // Frame i as the Pipeline gets it: the second lap numbered and timed on from the first.
+  SensorFrame sensorInput(const synth::Frame& frame, int i,
+                          std::optional<io::SensorType> sensor) const {
+    SensorFrame input = sensorFrame(frame, sensor);
+    input.index = static_cast<std::size_t>(i);
+    input.timestamp = i / fps();
+    return input;
+  }
 };
 
 struct LoopRun {
@@ -53,17 +61,12 @@ inline LoopRun runLoop(const LoopInput& input, bool loop_closing,
   options.sequential = true;
   options.loop_closing = loop_closing;
   Pipeline system(presetSettings(input.lap, edit, sensor), options);
-  Trajectory ground_truth;
+  const FedFrames fed = feedFrames(
+      system, input.frames(), [&](int i) { return input.render(i); }, sensor,
+      [&](const synth::Frame& frame, int i) { return input.sensorInput(frame, i, sensor); });
+  const Trajectory& ground_truth = fed.ground_truth;
   LoopRun result;
-  for (int i = 0; i < input.frames(); ++i) {
-    synth::Frame frame = input.render(i);
-    SensorFrame sensor_frame = sensorFrame(frame, sensor);
-    sensor_frame.index = static_cast<std::size_t>(i);
-    sensor_frame.timestamp = i / input.fps();
-    ground_truth.push_back({sensor_frame.timestamp, frame.cam0.T_w_c});
-    if (system.track(sensor_frame).outcome.state == track::TrackingState::Ok) ++result.tracked;
-  }
-  system.shutdown();
+  result.tracked = fed.tracked;
   if (system.loopCloser()) {
     result.loops = system.loopCloser()->closedLoops();
     result.global_ba = system.loopCloser()->globalBundleAdjustmentStats();

@@ -7,6 +7,7 @@
 #include <spdlog/sinks/ringbuffer_sink.h>
 #include <spdlog/spdlog.h>
 
+#include "error_of.h"
 #include "lumaslam/core/error.h"
 #include "lumaslam/core/settings_file.h"
 #include "lumaslam/core/settings_spellings.h"
@@ -134,13 +135,9 @@ TEST(SettingsFile, MissingOrBrokenFileIsAClearError) {
   }
 }
 
+// The Error that parsing `yaml` as settings.yaml raises (test::errorOf).
 std::string errorOf(const std::string& yaml) {
-  try {
-    (void)SettingsFile::fromString(yaml, "settings.yaml");
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "no error";
+  return lumaslam::test::errorOf([&] { (void)SettingsFile::fromString(yaml, "settings.yaml"); });
 }
 
 TEST(SettingsFile, DuplicateKeyNamesTheKeyAndBothLines) {

@@ -6,6 +6,7 @@
 #include <set>
 #include <string>
 
+#include "error_of.h"
 #include "lumaslam/core/error.h"
 #include "lumaslam/eval/association.h"
 #include "test_eval_synthetic.h"
@@ -17,15 +18,6 @@ Trajectory stampsOnly(std::initializer_list<double> stamps) {
   Trajectory trajectory;
   for (const double stamp : stamps) trajectory.push_back({stamp, SE3::Identity()});
   return trajectory;
-}
-
-std::string messageOf(const std::function<void()>& action) {
-  try {
-    action();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "no Error thrown";
 }
 
 TEST(Association, JitteredStampsWithMissingPosesMatchOneToOne) {
@@ -97,16 +89,16 @@ TEST(Association, UnsortedInputIsHandled) {
 TEST(Association, BadInputsGiveClearErrors) {
   const Trajectory ground_truth = test::helix(50, 0.05, 100.0);
   const Trajectory later = test::helix(50, 0.05, 500.0);
-  const std::string no_overlap = messageOf([&] { associate(later, ground_truth, 0.02); });
+  const std::string no_overlap = test::errorOf([&] { associate(later, ground_truth, 0.02); });
   EXPECT_NE(no_overlap.find("no estimate pose is within 0.02 s"), std::string::npos) << no_overlap;
   EXPECT_NE(no_overlap.find("500.000000"), std::string::npos) << no_overlap;
   EXPECT_NE(no_overlap.find("100.000000"), std::string::npos) << no_overlap;
 
-  EXPECT_NE(messageOf([&] { associate({}, ground_truth, 0.02); }).find("estimated trajectory"),
+  EXPECT_NE(test::errorOf([&] { associate({}, ground_truth, 0.02); }).find("estimated trajectory"),
             std::string::npos);
-  EXPECT_NE(messageOf([&] { associate(ground_truth, {}, 0.02); }).find("ground-truth"),
+  EXPECT_NE(test::errorOf([&] { associate(ground_truth, {}, 0.02); }).find("ground-truth"),
             std::string::npos);
-  EXPECT_NE(messageOf([&] { associate(ground_truth, ground_truth, -1.0); }).find("max_dt"),
+  EXPECT_NE(test::errorOf([&] { associate(ground_truth, ground_truth, -1.0); }).find("max_dt"),
             std::string::npos);
   EXPECT_THROW(associate(ground_truth, ground_truth, NAN), Error);
 }

@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "error_of.h"
 #include "lumaslam/core/error.h"
 #include "lumaslam/feature/orb_extractor.h"
 #include "lumaslam/feature/orb_settings.h"
@@ -15,17 +16,6 @@ namespace {
 
 OrbSettings parse(const std::string& lines, const std::string& origin = "orb.yaml") {
   return OrbSettings::fromSettings(core::SettingsFile::fromString("%YAML:1.0\n" + lines, origin));
-}
-
-// The message of the Error `action` raises ("" if none).
-template <typename Action>
-std::string errorOf(const Action& action) {
-  try {
-    action();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
 }
 
 TEST(OrbSettings, ReadsEveryOrbSlamKeyAndTheParallelSwitch) {
@@ -80,7 +70,7 @@ TEST(OrbSettings, BadValuesNameFileKeyAndValue) {
        {"bad.yaml", "ORBextractor.nFeatures", "3000000000 is out of range"}},
   };
   for (const auto& bad : cases) {
-    const std::string message = errorOf([&] { (void)parse(bad.lines, "bad.yaml"); });
+    const std::string message = test::errorOf([&] { (void)parse(bad.lines, "bad.yaml"); });
     ASSERT_FALSE(message.empty()) << "no error for: " << bad.lines;
     for (const auto& text : bad.mentions) {
       EXPECT_NE(message.find(text), std::string::npos) << message << "\n(expected: " << text << ")";
@@ -91,7 +81,7 @@ TEST(OrbSettings, BadValuesNameFileKeyAndValue) {
 TEST(OrbSettings, TheExtractorChecksSettingsMadeInCode) {
   OrbSettings zero;
   zero.nFeatures = 0;
-  const std::string message = errorOf([&] { OrbExtractor{zero}; });
+  const std::string message = test::errorOf([&] { OrbExtractor{zero}; });
   EXPECT_NE(message.find("key 'ORBextractor.nFeatures': must be > 0, found 0"), std::string::npos)
       << message;
 }

@@ -7,6 +7,7 @@
 #include <spdlog/spdlog.h>
 #include <opencv2/imgcodecs.hpp>
 
+#include "error_of.h"
 #include "lumaslam/core/error.h"
 #include "lumaslam/io/settings.h"
 #include "test_paths.h"
@@ -29,14 +30,9 @@ Settings parse(const std::string& yaml, std::optional<SensorType> sensor = std::
   return Settings::fromFile(SettingsFile::fromString(yaml, "test.yaml"), sensor);
 }
 
-// The message of the Error `yaml` raises ("" if it parses).
+// The message of the Error parsing `yaml` raises (test::errorOf).
 std::string errorOf(const std::string& yaml) {
-  try {
-    (void)parse(yaml);
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
+  return lumaslam::test::errorOf([&] { (void)parse(yaml); });
 }
 
 const std::string kMonoNew = R"(%YAML:1.0

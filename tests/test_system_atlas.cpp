@@ -38,21 +38,21 @@ AtlasRun runWithBlackout(const test::LoopInput& input, const test::SettingsEdit&
   options.enhance_preset = "off";
   options.sequential = true;
   Pipeline system(test::presetSettings(input.lap, edit, sensor), options);
-  Trajectory ground_truth;
-  AtlasRun run;
-  for (int i = 0; i < input.frames(); ++i) {
-    const synth::Frame frame = input.render(i);
-    SensorFrame sensor_frame = test::sensorFrame(frame, sensor);
-    sensor_frame.index = static_cast<std::size_t>(i);
-    sensor_frame.timestamp = i / input.fps();
+  const auto dark_in_blackout = [&](const synth::Frame& frame, int i) {
+    SensorFrame sensor_frame = input.sensorInput(frame, i, sensor);
     if (i >= kFirstDark && i < kFirstDark + kDarkFrames) {
       sensor_frame.image = cv::Mat::zeros(sensor_frame.image.size(), sensor_frame.image.type());
       if (!sensor_frame.right.empty()) sensor_frame.right = sensor_frame.image.clone();
     }
-    ground_truth.push_back({sensor_frame.timestamp, frame.cam0.T_w_c});
-    run.outcomes.push_back(system.track(sensor_frame).outcome);
-  }
-  system.shutdown();
+    return sensor_frame;
+  };
+  AtlasRun run;
+  const test::FedFrames fed = test::feedFrames(
+      system, input.frames(), [&](int i) { return input.render(i); }, sensor, dark_in_blackout,
+      [&](const synth::Frame&, const FrameResult& result) {
+        run.outcomes.push_back(result.outcome);
+      });
+  const Trajectory& ground_truth = fed.ground_truth;
   if (system.loopCloser()) {
     for (const auto& closed : system.loopCloser()->closedLoops()) {
       if (closed.merged_map) run.merges.push_back(closed);

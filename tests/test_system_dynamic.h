@@ -38,9 +38,6 @@ class GroundTruthBoxes {
   std::string text_;
 };
 
-// Called after every tracked frame with what the generator rendered and what Pipeline made of it.
-using FrameObserver = std::function<void(const synth::Frame&, const FrameResult&)>;
-
 // Enhancement off and local mapping in the caller's thread (repeatable) unless `options` says
 // otherwise. `extra_settings`: YAML lines appended to the generator's settings.yaml. `sensor`:
 // e.g. the rgb stream alone as monocular (then Sim3 alignment); nullopt: the preset's sensor.
@@ -53,23 +50,16 @@ inline SyntheticRun runSynthetic(const synth::SequenceRenderer& sequence, Pipeli
   const auto settings = presetSettings(
       sequence, [&](std::string yaml) { return yaml + extra_settings; }, sensor);
   Pipeline system(settings, options);
-  Trajectory ground_truth;
+  const FedFrames fed = feedFrames(
+      system, sequence.frameCount(), [&](int i) { return sequence.render(i); }, settings.sensor, {},
+      observe);
   SyntheticRun run;
-  for (int i = 0; i < sequence.frameCount(); ++i) {
-    const auto frame = sequence.render(i);
-    const auto result = system.track(sensorFrame(frame, settings.sensor));
-    ground_truth.push_back({frame.timestamp(), frame.cam0.T_w_c});
-    if (result.outcome.state == track::TrackingState::Ok) ++run.tracked;
-    run.dropped_features += result.dropped_features.size();
-    if (observe) observe(frame, result);
-  }
-  system.shutdown();
   run.frames = static_cast<std::size_t>(sequence.frameCount());
+  run.tracked = fed.tracked;
+  run.dropped_features = fed.dropped_features;
   run.keyframes = system.keyFrameCount();
   run.map_points = system.mapPointCount();
-  eval::EvaluationOptions eval_options;
-  if (settings.sensor == io::SensorType::Monocular) eval_options.align = eval::AlignMode::Sim3;
-  run.report = eval::evaluate(system.frameTrajectory(), ground_truth, eval_options);
+  run.report = evaluateRun(system, fed.ground_truth, settings.sensor);
   spdlog::info(
       "{} (detector {}): tracked {}/{}, {} keyframes, {} points, {} features dropped, "
       "ATE rmse {:.4f} m",

@@ -20,17 +20,12 @@ test::RunResult runWithOptions(const synth::Preset& preset, int frames, std::uin
   system_options.enhance_preset = "off";
   system_options.sequential = true;
   Pipeline system(settings, system_options);
-  Trajectory ground_truth;
+  const test::FedFrames fed = test::feedFrames(
+      system, frames, [&](int i) { return sequence.render(i); }, settings.sensor);
   test::RunResult run;
-  for (int i = 0; i < frames; ++i) {
-    const auto frame = sequence.render(i);
-    const auto result = system.track(test::sensorFrame(frame, settings.sensor));
-    ground_truth.push_back({frame.timestamp(), frame.cam0.T_w_c});
-    if (result.outcome.state == track::TrackingState::Ok) ++run.tracked;
-  }
-  system.shutdown();
+  run.tracked = fed.tracked;
   run.frames = static_cast<std::size_t>(frames);
-  run.report = eval::evaluate(system.frameTrajectory(), ground_truth, {});
+  run.report = eval::evaluate(system.frameTrajectory(), fed.ground_truth, {});
   spdlog::info("{} ({} frames): tracked {}, ATE rmse {:.4f} m", preset.name, frames, run.tracked,
                run.report.ate.stats.rmse);
   return run;

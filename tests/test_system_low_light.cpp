@@ -24,19 +24,18 @@ LowLightRun runDarkened(const std::string& enhance_preset, int frames) {
   options.enhance_preset = enhance_preset;
   options.sequential = true;
   Pipeline system(test::presetSettings(sequence), options);
-  Trajectory ground_truth;
-  LowLightRun run;
-  for (int i = 0; i < frames; ++i) {
-    const auto frame = sequence.render(i);
+  const auto darkened = [](const synth::Frame& frame, int i) {
     auto input = test::sensorFrame(frame);
     // A new noise draw per frame (one key for all would be fixed-pattern noise).
     input.image = synth::perturbImage(frame.cam0.image, synth::PerturbModel::Dark, 4, i,
                                       frame.timestamp(), static_cast<std::uint64_t>(i) + 1);
-    const auto result = system.track(input);
-    ground_truth.push_back({frame.timestamp(), frame.cam0.T_w_c});
-    if (result.outcome.state == track::TrackingState::Ok) ++run.tracked;
-  }
-  system.shutdown();
+    return input;
+  };
+  const test::FedFrames fed = test::feedFrames(
+      system, frames, [&](int i) { return sequence.render(i); }, std::nullopt, darkened);
+  const Trajectory& ground_truth = fed.ground_truth;
+  LowLightRun run;
+  run.tracked = fed.tracked;
   run.frames = static_cast<std::size_t>(frames);
   const auto trajectory = system.frameTrajectory();
   if (trajectory.size() >= 3) {

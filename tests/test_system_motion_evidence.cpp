@@ -78,15 +78,10 @@ TEST(SystemMotionEvidence, CostsNothingOnAStaticScene) {
   options.enhance_preset = "off";
   options.sequential = true;
   Pipeline system(test::presetSettings(sequence), options);
-  Trajectory ground_truth;
-  for (int i = 0; i < sequence.frameCount(); ++i) {
-    const auto frame = sequence.render(i);
-    system.track(test::sensorFrame(frame));
-    ground_truth.push_back({frame.timestamp(), frame.cam0.T_w_c});
-  }
-  system.shutdown();
+  const test::FedFrames fed = test::feedFrames(
+      system, sequence.frameCount(), [&](int i) { return sequence.render(i); }, std::nullopt);
   const auto report =
-      eval::evaluate(system.frameTrajectory(), ground_truth, eval::EvaluationOptions{});
+      eval::evaluate(system.frameTrajectory(), fed.ground_truth, eval::EvaluationOptions{});
   EXPECT_EQ(report.matched_poses, 100U);
   // Issue 16: no more than 10 % above the run without the test (+ 0.5 mm for a few-mm ATE).
   EXPECT_LE(report.ate.stats.rmse, 1.1 * before.ate() + 0.0005) << "before " << before.ate();

@@ -28,10 +28,8 @@ io::Settings settingsFromText(const std::string& text, const std::string& origin
 
 Trajectory run(const synth::SequenceRenderer& sequence, const io::Settings& settings) {
   Pipeline system(settings, sequentialOptions());
-  for (int i = 0; i < sequence.frameCount(); ++i) {
-    (void)system.track(test::sensorFrame(sequence.render(i), settings.sensor));
-  }
-  system.shutdown();
+  test::feedFrames(
+      system, sequence.frameCount(), [&](int i) { return sequence.render(i); }, settings.sensor);
   return system.frameTrajectory();
 }
 

@@ -66,6 +66,53 @@ inline SensorFrame sensorFrame(const synth::Frame& frame,
   return input;
 }
 
+// Called after every frame with what the generator rendered and what Pipeline made of it.
+using FrameObserver = std::function<void(const synth::Frame&, const FrameResult&)>;
+// Renders frame i of a run.
+using FrameRenderer = std::function<synth::Frame(int)>;
+// The Pipeline's input for rendered frame i; unset: sensorFrame(frame, sensor).
+using FrameInput = std::function<SensorFrame(const synth::Frame&, int)>;
+
+// What feeding the frames gave, before evaluation.
+struct FedFrames {
+  Trajectory ground_truth;  // at the input's timestamps
+  std::size_t tracked = 0;
+  std::optional<std::size_t> first_tracked;  // frame index of the first tracked frame
+  std::size_t moving_features = 0;           // summed over the frames
+  std::size_t dropped_features = 0;          // summed over the frames (detector boxes)
+};
+
+// The one loop of the system tests that feeds rendered frames to a Pipeline: frames 0 to
+// frames - 1, each handed over as `input` makes it, then shutdown().
+inline FedFrames feedFrames(Pipeline& system, int frames, const FrameRenderer& render,
+                            std::optional<io::SensorType> sensor, const FrameInput& input = {},
+                            const FrameObserver& observe = {}) {
+  FedFrames fed;
+  for (int i = 0; i < frames; ++i) {
+    const synth::Frame frame = render(i);
+    const SensorFrame sensor_frame = input ? input(frame, i) : sensorFrame(frame, sensor);
+    const FrameResult result = system.track(sensor_frame);
+    fed.ground_truth.push_back({sensor_frame.timestamp, frame.cam0.T_w_c});
+    fed.moving_features += static_cast<std::size_t>(result.outcome.moving_features);
+    fed.dropped_features += result.dropped_features.size();
+    if (result.outcome.state == track::TrackingState::Ok) {
+      ++fed.tracked;
+      if (!fed.first_tracked) fed.first_tracked = static_cast<std::size_t>(i);
+    }
+    if (observe) observe(frame, result);
+  }
+  system.shutdown();
+  return fed;
+}
+
+// ATE/RPE of the run's frame trajectory: SE3-aligned, Sim3 for monocular (scale unknown).
+inline eval::EvaluationReport evaluateRun(const Pipeline& system, const Trajectory& ground_truth,
+                                          io::SensorType sensor) {
+  eval::EvaluationOptions options;
+  if (sensor == io::SensorType::Monocular) options.align = eval::AlignMode::Sim3;
+  return eval::evaluate(system.frameTrajectory(), ground_truth, options);
+}
+
 inline RunResult runOnPreset(const std::string& preset, int frames, std::uint64_t seed,
                              const RunConfig& config = {}) {
   const synth::SequenceRenderer sequence(synth::findPreset(preset), frames, seed);
@@ -74,25 +121,16 @@ inline RunResult runOnPreset(const std::string& preset, int frames, std::uint64_
   options.enhance_preset = "off";
   options.sequential = config.sequential;
   Pipeline system(settings, options);
-  Trajectory ground_truth;
+  const FedFrames fed = feedFrames(
+      system, frames, [&](int i) { return sequence.render(i); }, settings.sensor);
   RunResult run;
-  for (int i = 0; i < frames; ++i) {
-    const auto frame = sequence.render(i);
-    const auto result = system.track(sensorFrame(frame, settings.sensor));
-    ground_truth.push_back({frame.timestamp(), frame.cam0.T_w_c});
-    run.moving_features += static_cast<std::size_t>(result.outcome.moving_features);
-    if (result.outcome.state == track::TrackingState::Ok) {
-      ++run.tracked;
-      if (!run.first_tracked) run.first_tracked = static_cast<std::size_t>(i);
-    }
-  }
-  system.shutdown();
   run.frames = static_cast<std::size_t>(frames);
-  run.ground_truth_length = pathLength(ground_truth);
+  run.tracked = fed.tracked;
+  run.first_tracked = fed.first_tracked;
+  run.moving_features = fed.moving_features;
+  run.ground_truth_length = pathLength(fed.ground_truth);
   run.keyframes = system.keyFrameCount();
-  eval::EvaluationOptions eval_options;
-  if (settings.sensor == io::SensorType::Monocular) eval_options.align = eval::AlignMode::Sim3;
-  run.report = eval::evaluate(system.frameTrajectory(), ground_truth, eval_options);
+  run.report = evaluateRun(system, fed.ground_truth, settings.sensor);
   spdlog::info(
       "{} ({}): tracked {}/{} from frame {}, {} keyframes, {} points, ATE rmse {:.2f} mm "
       "over {:.2f} m ({:.3f} % of the path)",
