@@ -10,9 +10,9 @@
 
 namespace lumaslam::cli {
 
-// CV_8U, nonzero where no feature was taken, in pixels of `image_size` (the frame as read,
-// before any Camera.newWidth resize: the marks are stretched to it); empty when the previous
-// frame had no box. `marks_image`: the size of the marks' pixels.
+// CV_8U, nonzero where no feature was taken, in pixels of `image_size` (the image the report
+// extracts from; the marks are stretched to it should the sizes differ); empty when the
+// previous frame had no box. `marks_image`: the size of the marks' pixels.
 cv::Mat previousDynamicMask(const FrameMarks& previous, const io::FrameData& previous_frame,
                             const io::Settings& settings, cv::Size marks_image,
                             cv::Size image_size);

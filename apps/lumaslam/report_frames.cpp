@@ -14,6 +14,7 @@
 #include "lumaslam/io/settings.h"
 #include "report_extraction_mask.h"
 #include "report_frame_marks.h"
+#include "report_tracked_image.h"
 
 namespace lumaslam::cli {
 namespace {
@@ -124,6 +125,7 @@ struct Sampling {
   io::Settings settings;
   enhance::EnhancerParams params;
   feature::OrbExtractor extractor;
+  TrackedImage tracked_image;
   std::optional<MovingFeatures> marks;
 };
 
@@ -138,7 +140,8 @@ cv::Mat extractionMaskOf(const Pick& pick, const Sampling& sampling, cv::Size im
 
 SampleFrame sampleFrame(const Pick& pick, const Sampling& sampling) {
   const io::FrameData frame = readFrame(sampling.dataset, pick.index);
-  const auto [gray, colour] = asTracked(frame.image, sampling.params);
+  const cv::Mat image = sampling.tracked_image.of(frame.image);
+  const auto [gray, colour] = asTracked(image, sampling.params);
   const auto keypoints =
       sampling.extractor.extract(gray, extractionMaskOf(pick, sampling, gray.size())).keypoints;
   const auto& marks = sampling.marks;
@@ -148,7 +151,7 @@ SampleFrame sampleFrame(const Pick& pick, const Sampling& sampling) {
   SampleFrame sample{pick.role,
                      frame.index,
                      frame.timestamp,
-                     jpegDataUri(frame.image, kMaxWidth),
+                     jpegDataUri(image, kMaxWidth),
                      jpegDataUri(drawn.canvas),
                      keypoints.size(),
                      drawn.green,
@@ -198,11 +201,17 @@ SampleFrames loadSampleFrames(const std::filesystem::path& run_dir, const nlohma
     auto settings = io::loadSettings(summary.at("settings").get<std::string>());
     auto params = enhancerParams(summary, settings);
     samples.enhancement = params.preset;
+    TrackedImage tracked_image(settings);
+    samples.geometry = tracked_image.description();
     const feature::OrbExtractor extractor(settings.file
                                               ? feature::OrbSettings::fromSettings(*settings.file)
                                               : feature::OrbSettings{});
-    const Sampling sampling{summary.at("dataset").get<std::string>(), std::move(settings),
-                            std::move(params), extractor, std::move(marks)};
+    const Sampling sampling{summary.at("dataset").get<std::string>(),
+                            std::move(settings),
+                            std::move(params),
+                            extractor,
+                            std::move(tracked_image),
+                            std::move(marks)};
     for (const Pick& pick : pickFrames(timing)) {
       samples.frames.push_back(sampleFrame(pick, sampling));
     }

@@ -1,6 +1,7 @@
 #pragma once
 // Sample frames of a run for `lumaslam report`: the first, middle and last tracked frame read
-// again from the run's dataset, raw and enhanced as the pipeline enhances them, with the ORB
+// again from the run's dataset and taken as tracking takes them (resized, rectified:
+// report_tracked_image.h), raw and enhanced as the pipeline enhances them, with the ORB
 // keypoints tracking would extract (outside the previous frame's boxes, as the run did) and,
 // from the run's moving_features.txt, the detection boxes and the features the run dropped,
 // downscaled and encoded for an inline <img>.
@@ -35,6 +36,7 @@ struct SampleFrame {
 struct SampleFrames {
   std::vector<SampleFrame> frames;
   std::string enhancement;  // the preset used, e.g. "best" or "off"
+  std::string geometry;     // what was done to the images as read, e.g. "rectified"; or empty
   std::string problem;      // why there are no (or fewer) frames, e.g. the dataset is gone
   // Why no feature is marked: the run folder has no moving_features.txt (an older run), or
   // the file is broken (`marks_broken`, the error); empty when the marks were read.

@@ -13,6 +13,10 @@ std::string introduction(const SampleFrames& samples) {
       "<p>Read again from the dataset; enhancement preset " + escapeHtml(samples.enhancement) +
       " applied to each frame on its own (the run's online statistics are not kept), with the "
       "ORB keypoints extracted from the image tracking sees (green).";
+  if (!samples.geometry.empty()) {
+    html += " Both pictures are the frame as tracking takes it (" + escapeHtml(samples.geometry) +
+            "), in the pixels of moving_features.txt.";
+  }
   if (samples.unmarked.empty()) {
     return html +
            " Like the run, the keypoints are taken outside the previous frame's boxes (made "
