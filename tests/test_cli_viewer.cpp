@@ -215,6 +215,7 @@ TEST_F(CliViewer, TheBrowserShowsTheFrameTheMapAndTheStatusAsTheRunAdvances) {
   EXPECT_EQ(summary["viewer"]["frames_published"], summary["frames"]);
   // The tracking thread's cost is reported (docs/viewer.md has the measured numbers).
   EXPECT_GE(summary["viewer"]["handover_ms"]["median"].get<double>(), 0.0);
+  EXPECT_GE(summary["viewer"]["handover_cpu_ms"]["median"].get<double>(), 0.0);
 
   const auto plain_out = dir_.path() / "plain";
   const auto plain =

@@ -65,7 +65,7 @@ struct FrameLoop {
   double dropped_sum = 0.0;
   double moving_sum = 0.0;
   double wait_sum = 0.0;
-  std::vector<double> viewer_ms;    // tracking-thread time handing frames to the viewer
+  std::vector<HandoverTime> viewer_handovers;  // tracking-thread time handing frames over
   std::string status = "complete";  // "partial" (stopped by a signal), "stopped at a bad frame"
   int exit_code = 0;
 };
@@ -187,7 +187,7 @@ FrameLoop trackFrames(io::DatasetReader& reader, Pipeline& system, FrameFiles& f
     saveMapPeriodically(system, options, loop.frames);
     if (result.outcome.state == track::TrackingState::Ok) ++loop.tracked;
     if (result.outcome.relocalized) ++loop.relocalized;
-    if (viewer) loop.viewer_ms.push_back(publishFrame(*viewer, *frame, result, system));
+    if (viewer) loop.viewer_handovers.push_back(publishFrame(*viewer, *frame, result, system));
     progress.update(loop.frames, track::toString(result.outcome.state));
   }
   if (stop.requested()) {
@@ -412,7 +412,7 @@ int runPipeline(const RunOptions& options) {
   // After the trajectories, so that a map that cannot be written costs no results.
   const std::string save_error = saveMapIfAsked(system, options);
   summary["map_file"] = mapFileSummary(options, system, loaded_keyframes, save_error);
-  if (viewer) summary["viewer"] = viewerSummary(*viewer, loop.viewer_ms);
+  if (viewer) summary["viewer"] = viewerSummary(*viewer, loop.viewer_handovers);
   files.commit();
   std::printf(
       "%s: %zu frames, %zu tracked, %zu lost, %zu skipped, %zu keyframes, %.1f ms/frame "

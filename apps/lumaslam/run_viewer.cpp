@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <ctime>
 #include <thread>
 
 #include <spdlog/spdlog.h>
@@ -42,6 +43,22 @@ viewer::FrameView frameViewOf(io::FrameData& frame, const FrameResult& result,
   return view;
 }
 
+// CPU time of the calling thread (ms).
+double threadCpuMs() {
+  timespec now{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &now);
+  return static_cast<double>(now.tv_sec) * 1e3 + static_cast<double>(now.tv_nsec) * 1e-6;
+}
+
+// Median / p99 / max of `values`.
+nlohmann::json quantiles(std::vector<double> values) {
+  std::sort(values.begin(), values.end());
+  const auto at = [&](double q) {
+    return values.empty() ? 0.0 : values[static_cast<std::size_t>(q * (values.size() - 1))];
+  };
+  return {{"median", at(0.5)}, {"p99", at(0.99)}, {"max", at(1.0)}};
+}
+
 }  // namespace
 
 std::unique_ptr<viewer::Viewer> startViewer(const RunOptions& options, const Pipeline& system) {
@@ -63,12 +80,15 @@ std::unique_ptr<viewer::Viewer> startViewer(const RunOptions& options, const Pip
   return viewer;
 }
 
-double publishFrame(viewer::Viewer& viewer, io::FrameData& frame, const FrameResult& result,
-                    const Pipeline& system) {
+HandoverTime publishFrame(viewer::Viewer& viewer, io::FrameData& frame, const FrameResult& result,
+                          const Pipeline& system) {
   const auto start = std::chrono::steady_clock::now();
+  const double cpu_start = threadCpuMs();
   viewer.publish(frameViewOf(frame, result, system));
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
-      .count();
+  const double cpu_ms = threadCpuMs() - cpu_start;
+  return {
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count(),
+      cpu_ms};
 }
 
 void keepServing(const viewer::Viewer& viewer, const StopOnSignal& stop) {
@@ -78,16 +98,18 @@ void keepServing(const viewer::Viewer& viewer, const StopOnSignal& stop) {
   while (!stop.requested()) std::this_thread::sleep_for(std::chrono::milliseconds(100));
 }
 
-nlohmann::json viewerSummary(const viewer::Viewer& viewer, const std::vector<double>& handover_ms) {
-  std::vector<double> sorted = handover_ms;
-  std::sort(sorted.begin(), sorted.end());
-  const auto at = [&](double q) {
-    return sorted.empty() ? 0.0 : sorted[static_cast<std::size_t>(q * (sorted.size() - 1))];
-  };
+nlohmann::json viewerSummary(const viewer::Viewer& viewer,
+                             const std::vector<HandoverTime>& handovers) {
+  std::vector<double> wall, cpu;
+  for (const HandoverTime& handover : handovers) {
+    wall.push_back(handover.wall_ms);
+    cpu.push_back(handover.cpu_ms);
+  }
   return {{"url", viewer.url()},
           {"frames_published", viewer.framesPublished()},
           {"frames_dropped", viewer.framesDropped()},
-          {"handover_ms", {{"median", at(0.5)}, {"p99", at(0.99)}, {"max", at(1.0)}}}};
+          {"handover_ms", quantiles(wall)},
+          {"handover_cpu_ms", quantiles(cpu)}};
 }
 
 }  // namespace lumaslam::cli

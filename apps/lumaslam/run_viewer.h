@@ -17,15 +17,23 @@ namespace lumaslam::cli {
 // reachable from other machines).
 std::unique_ptr<viewer::Viewer> startViewer(const RunOptions& options, const Pipeline& system);
 
-// Hands one tracked frame to the viewer; `frame`'s images move into the view. Returns the
-// time the tracking thread spent on it (ms).
-double publishFrame(viewer::Viewer& viewer, io::FrameData& frame, const FrameResult& result,
-                    const Pipeline& system);
+// The tracking thread's time handing one frame over (ms): wall time, which on a loaded machine
+// includes the time the thread waited for a core, and the thread's own CPU time, the work.
+struct HandoverTime {
+  double wall_ms = 0.0;
+  double cpu_ms = 0.0;
+};
+
+// Hands one tracked frame to the viewer; `frame`'s images move into the view.
+HandoverTime publishFrame(viewer::Viewer& viewer, io::FrameData& frame, const FrameResult& result,
+                          const Pipeline& system);
 
 // `--viewer-keep`: after the results are written, serve the final map until SIGINT / SIGTERM.
 void keepServing(const viewer::Viewer& viewer, const StopOnSignal& stop);
 
-// summary.json's "viewer": address, frames handed over and shown, tracking-thread cost.
-nlohmann::json viewerSummary(const viewer::Viewer& viewer, const std::vector<double>& handover_ms);
+// summary.json's "viewer": address, frames handed over and shown, tracking-thread cost
+// (`handover_ms` wall, `handover_cpu_ms` thread CPU time: median / p99 / max).
+nlohmann::json viewerSummary(const viewer::Viewer& viewer,
+                             const std::vector<HandoverTime>& handovers);
 
 }  // namespace lumaslam::cli
