@@ -100,7 +100,7 @@ TEST_F(ViewerHttp, BadRequestsAreRefusedWithAReason) {
   const auto bad_view = client_->Get("/frame.jpg?view=depth");
   ASSERT_TRUE(bad_view);
   EXPECT_EQ(bad_view->status, 400);
-  EXPECT_NE(bad_view->body.find("raw or enhanced"), std::string::npos);
+  EXPECT_NE(bad_view->body.find("raw, enhanced or right"), std::string::npos);
   const auto bad_action = client_->Post("/control?action=jump", "", "text/plain");
   ASSERT_TRUE(bad_action);
   EXPECT_EQ(bad_action->status, 400);
@@ -158,6 +158,35 @@ TEST_F(ViewerHttp, APublishedFrameIsDrawnWithItsKeypointsAndBoxes) {
   ASSERT_TRUE(map_script);
   EXPECT_EQ(map_script->body.rfind("window.lumaslamInitialMap = {\"map\":", 0), 0u)
       << map_script->body.substr(0, 80);
+}
+
+TEST_F(ViewerHttp, AStereoFrameServesItsRightImageWithoutTheLeftImagesMarks) {
+  FrameView stereo = testFrame(8);
+  stereo.right = cv::Mat(120, 160, CV_8UC1, cv::Scalar(200));
+  viewer_->publish(std::move(stereo));
+  ASSERT_TRUE(waitForFrame(8));
+  EXPECT_EQ(status()["right"], true);
+  const auto right = client_->Get("/frame.jpg?view=right");
+  ASSERT_TRUE(right);
+  ASSERT_EQ(right->status, 200);
+  EXPECT_EQ(right->get_header_value("Content-Type"), "image/jpeg");
+  const cv::Mat picture =
+      cv::imdecode(std::vector<uchar>(right->body.begin(), right->body.end()), cv::IMREAD_COLOR);
+  ASSERT_EQ(picture.size(), cv::Size(160, 120));
+  for (const cv::Point at : {cv::Point(10, 100), cv::Point(42, 40), cv::Point(122, 40)}) {
+    const cv::Vec3b bgr = picture.at<cv::Vec3b>(at);
+    for (int channel = 0; channel < 3; ++channel) {
+      EXPECT_NEAR(bgr[channel], 200, 8) << "the right image, unmarked, at " << at;
+    }
+  }
+
+  viewer_->publish(testFrame(9));  // not stereo
+  ASSERT_TRUE(waitForFrame(9));
+  EXPECT_EQ(status()["right"], false);
+  const auto none = client_->Get("/frame.jpg?view=right");
+  ASSERT_TRUE(none);
+  EXPECT_EQ(none->status, 404);
+  EXPECT_NE(none->body.find("no right image"), std::string::npos) << none->body;
 }
 
 TEST_F(ViewerHttp, TheMapRouteHoldsTheTrajectoryOfEveryPublishedFrame) {

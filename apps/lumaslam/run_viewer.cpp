@@ -30,6 +30,7 @@ viewer::FrameView frameViewOf(io::FrameData& frame, const FrameResult& result,
   view.map = static_cast<int>(result.outcome.map);
   view.camera_centre = result.centre_in_map;
   view.raw = std::move(frame.image);  // the reader's next frame is a new image
+  view.right = std::move(frame.right);
   // The enhancer may reuse its buffers for the next frame: the view keeps its own copy.
   view.features_image = result.feature_image.clone();
   view.overlays_fit_raw = !system.rectifiesStereo();

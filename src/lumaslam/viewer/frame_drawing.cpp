@@ -45,9 +45,18 @@ void drawOverlays(cv::Mat& bgr, const FrameView& view, double scale) {
   drawPoints(bgr, view.dropped, cv::Scalar(40, 40, 255), scale);
 }
 
+cv::Mat scaledRight(const cv::Mat& right, int max_width) {
+  if (right.empty()) return {};
+  cv::Mat bgr = toBgr(right);
+  const double scale = std::min(1.0, static_cast<double>(max_width) / bgr.cols);
+  if (scale < 1.0) cv::resize(bgr, bgr, cv::Size(), scale, scale, cv::INTER_AREA);
+  return bgr;
+}
+
 }  // namespace
 
 cv::Mat drawFramePicture(const FrameView& view, FramePicture picture, int max_width) {
+  if (picture == FramePicture::Right) return scaledRight(view.right, max_width);
   const bool raw = picture == FramePicture::Raw || view.features_image.empty();
   const cv::Mat& source = raw ? view.raw : view.features_image;
   if (source.empty()) return {};

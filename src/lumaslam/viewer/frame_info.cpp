@@ -18,6 +18,7 @@ nlohmann::json frameInfoJson(const FrameView& view) {
           {"dropped", view.dropped.size()},
           {"moving", view.moving_features},
           {"boxes", boxes},
+          {"right", !view.right.empty()},
           {"timing",
            {{"enhance", t.enhance},
             {"features", t.features},

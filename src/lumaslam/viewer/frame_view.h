@@ -27,6 +27,7 @@ struct FrameView {
   std::optional<Eigen::Vector3d> camera_centre;  // world, when tracked
   cv::Mat raw;                       // the image as read (gray or BGR); owned by the view
   cv::Mat features_image;            // the gray image features were taken from (enhanced)
+  cv::Mat right;                     // stereo: the right image as read, owned; else empty
   bool overlays_fit_raw = true;      // keypoints are in raw's pixels (not a rectified pair)
   std::vector<cv::Point2f> kept;     // keypoints used for tracking
   std::vector<cv::Point2f> dropped;  // keypoints removed as dynamic

@@ -2,7 +2,9 @@
 
 #include <fstream>
 #include <limits>
+#include <map>
 #include <sstream>
+#include <string>
 
 #include <httplib.h>
 
@@ -66,16 +68,21 @@ void addFrameRoute(httplib::Server& server, const RouteContext& context) {
   const PublishedState& state = context.state;
   server.Get("/frame.jpg", [&state](const httplib::Request& request, httplib::Response& response) {
     const std::string view = request.has_param("view") ? request.get_param_value("view") : "raw";
-    if (view != "raw" && view != "enhanced") {
+    const std::map<std::string, FramePicture> pictures = {{"raw", FramePicture::Raw},
+                                                          {"enhanced", FramePicture::Enhanced},
+                                                          {"right", FramePicture::Right}};
+    const auto which = pictures.find(view);
+    if (which == pictures.end()) {
       response.status = 400;
-      response.set_content("view must be raw or enhanced, not '" + view + "'", "text/plain");
+      response.set_content("view must be raw, enhanced or right, not '" + view + "'", "text/plain");
       return;
     }
-    const auto picture =
-        state.picture(view == "enhanced" ? FramePicture::Enhanced : FramePicture::Raw);
-    if (!picture) {
+    const auto picture = state.picture(which->second);
+    if (!picture || picture->empty()) {
       response.status = 404;
-      response.set_content("no frame yet", "text/plain");
+      response.set_content(picture ? "the frame has no " + view + " image (right: stereo runs)"
+                                   : std::string("no frame yet"),
+                           "text/plain");
       return;
     }
     noStore(response);

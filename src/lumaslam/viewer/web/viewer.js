@@ -194,6 +194,8 @@ function onStatus(status, mapView) {
     shownFrameVersion = status.frame_version;
     byId('frame-raw').src = '/frame.jpg?view=raw&v=' + status.frame_version;
     byId('frame-enhanced').src = '/frame.jpg?view=enhanced&v=' + status.frame_version;
+    byId('right-figure').hidden = !status.right;
+    if (status.right) byId('frame-right').src = '/frame.jpg?view=right&v=' + status.frame_version;
     if (!history.length || history[history.length - 1].frame < status.frame) history.push(status);
     if (history.length > kHistory) history.shift();
     drawPlots(byId('plots'));
