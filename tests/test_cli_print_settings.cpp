@@ -8,6 +8,7 @@
 #include <string>
 
 #include "lumaslam/core/settings_file.h"
+#include "lumaslam/loop/vocabulary_choice.h"
 #include "test_cli.h"
 
 namespace {
@@ -125,6 +126,51 @@ TEST(CliPrintSettings, PrintedStereoAndRgbdSettingsPrintTheSameAgain) {
   for (const char* config : {"euroc_stereo.yaml", "kitti_04-12_stereo.yaml", "tum_fr1_rgbd.yaml"}) {
     expectPrintsTheSameAgain(printed(config), dir.path() / (std::string("again_") + config));
   }
+}
+
+// Where a run's data and vocabulary come from: the dataset folder and the vocabulary as absolute
+// paths (relative ones are resolved against the settings file's folder), the default vocabulary
+// when nothing is named, and the command line over the file.
+TEST(CliPrintSettings, ShowsTheDatasetRootTheVocabularyAndLoopClosing) {
+  lumaslam::test::TempDir dir("print_settings_sources");
+  const auto settings = dir.path() / "sources.yaml";
+  std::ofstream(settings) << lumaslam::test::readTextFile(sourceDir() / "configs" /
+                                                          "tum_fr1_rgbd.yaml")
+                          << "\nSystem.datasetRoot: \"data\"\nLoop.vocabulary: \"none\"\n"
+                             "Loop.closing: 0\n";
+  const auto result =
+      runCli("run --dataset tum:/nowhere --settings " + settings.string() + " --print-settings");
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  const std::string text = result.output.substr(result.output.find("%YAML:1.0"));
+  for (const std::string line :
+       {"System.datasetRoot: \"" + (dir.path() / "data").string() + "\"\n",
+        std::string("Loop.vocabulary: \"none\"\n"), std::string("Loop.closing: false\n")}) {
+    EXPECT_NE(text.find(line), std::string::npos) << line << " not in\n" << text;
+  }
+  expectPrintsTheSameAgain(text, dir.path() / "again.yaml");
+
+  const std::string shipped = printed("tum_fr1_rgbd.yaml");
+  EXPECT_EQ(shipped.find("System.datasetRoot"), std::string::npos);
+  const auto vocabulary = shipped.find("Loop.vocabulary: \"/");
+  ASSERT_NE(vocabulary, std::string::npos) << shipped;
+  EXPECT_NE(shipped.find(lumaslam::loop::defaultVocabularyName() + "\"\n", vocabulary),
+            std::string::npos)
+      << shipped;
+  EXPECT_NE(shipped.find("Loop.closing: true\n"), std::string::npos) << shipped;
+
+  const std::string overridden =
+      printed("tum_fr1_rgbd.yaml", "--vocabulary none --no-loop-closing");
+  EXPECT_NE(overridden.find("Loop.vocabulary: \"none\"\n"), std::string::npos) << overridden;
+  EXPECT_NE(overridden.find("Loop.closing: false\n"), std::string::npos) << overridden;
+}
+
+// An unrectified pair is tracked in its rectified images; their camera is shown as a comment
+// (the same numbers the run logs), a rectified pair has none.
+TEST(CliPrintSettings, ShowsTheRectifiedCameraOfAnUnrectifiedPair) {
+  const std::string euroc = printed("euroc_stereo.yaml");
+  EXPECT_NE(euroc.find("\n# rectified pair, as tracked: fx "), std::string::npos) << euroc;
+  EXPECT_EQ(printed("kitti_04-12_stereo.yaml").find("# rectified pair"), std::string::npos);
+  EXPECT_EQ(printed("tum_fr1_rgbd.yaml").find("# rectified pair"), std::string::npos);
 }
 
 TEST(CliPrintSettings, ABadValueIsAnErrorNamingTheKey) {

@@ -1,7 +1,11 @@
 #include "lumaslam/pipeline_params.h"
 
 #include <algorithm>
+#include <filesystem>
 
+#include <fmt/format.h>
+
+#include "lumaslam/camera/stereo_rectifier.h"
 #include "lumaslam/core/settings_section.h"
 #include "lumaslam/detect/detector_spec.h"
 #include "lumaslam/enhance/enhancer_params.h"
@@ -9,6 +13,7 @@
 #include "lumaslam/io/camera_settings_text.h"
 #include "lumaslam/loop/loop_closer_settings.h"
 #include "lumaslam/loop/place_recognition.h"
+#include "lumaslam/loop/vocabulary_choice.h"
 #include "lumaslam/mapping/local_mapper_settings.h"
 #include "lumaslam/track/tracker_settings.h"
 
@@ -81,6 +86,36 @@ enhance::EnhancerParams enhancerParamsFor(const io::Settings& settings,
                        : enhance::EnhancerParams{};
 }
 
+namespace {
+
+// The vocabulary a run loads (named by the file or the command line, LUMASLAM_VOCABULARY, or
+// the default vocabulary found) as an absolute path that reads back anywhere, and whether it
+// closes loops.
+std::string printLoopSources(const io::Settings& settings, const PipelineOptions& options) {
+  const auto choice = loop::chooseVocabulary(options.vocabulary.value_or(settings.loop.vocabulary));
+  core::SectionPrinter keys("Loop");
+  keys("vocabulary", choice.file.empty() ? std::string(loop::kNoVocabulary)
+                                         : std::filesystem::absolute(choice.file).string());
+  keys("closing", options.loop_closing.value_or(settings.loop.closing));
+  return keys.text();
+}
+
+// An unrectified pair is tracked in the rectified images: their common camera is not a key
+// (the Pipeline computes it), so it is shown as a comment.
+std::string printRectifiedCamera(const io::Settings& settings) {
+  if (settings.sensor != io::SensorType::Stereo || !settings.stereo || !settings.stereo->right) {
+    return {};
+  }
+  const auto rectifier = camera::StereoRectifier::fromSettings(settings);
+  const auto& camera = rectifier.rectifiedCamera();
+  return fmt::format(
+      "# rectified pair, as tracked: fx {} fy {} cx {} cy {}, no distortion, baseline {} m, "
+      "bf {}\n",
+      camera.fx(), camera.fy(), camera.cx(), camera.cy(), rectifier.baseline(), rectifier.bf());
+}
+
+}  // namespace
+
 std::string effectiveSettings(const io::Settings& settings, const PipelineOptions& options) {
   const bool sequential = options.sequential.value_or(settings.system.sequential);
   const bool motion_evidence =
@@ -91,10 +126,12 @@ std::string effectiveSettings(const io::Settings& settings, const PipelineOption
   system.sequential = sequential;
   const auto detector = detect::detectorParamsFor(settings.file.get(), options.detector);
   return io::printCameraSettings(settings.camera) + io::printStereoSettings(settings) +
-         orb.settingsLines() + io::printSystemSettings(settings.sensor, system) +
+         printRectifiedCamera(settings) + orb.settingsLines() +
+         io::printSystemSettings(settings.sensor, system) +
          enhancerParamsFor(settings, options).toSettingsText() +
          (detector ? detector->settingsLines() : "Detector.type: \"none\"\n") +
-         printStageParams(stageParamsFor(settings, sequential, motion_evidence));
+         printStageParams(stageParamsFor(settings, sequential, motion_evidence)) +
+         printLoopSources(settings, options);
 }
 
 }  // namespace lumaslam

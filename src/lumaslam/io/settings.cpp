@@ -303,6 +303,10 @@ std::string printSystemSettings(SensorType sensor, const SystemSettings& system)
   keys("sensor", std::string(toString(sensor)));
   SystemSettings copy = system;
   visitSystemKeys(keys, copy);
+  // Absolute: a relative root was resolved against the settings file's folder.
+  if (!system.datasetRoot.empty()) {
+    keys("datasetRoot", std::filesystem::absolute(system.datasetRoot).string());
+  }
   return keys.text();
 }
 
