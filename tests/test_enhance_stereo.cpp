@@ -4,15 +4,18 @@
 #include <gtest/gtest.h>
 
 #include "lumaslam/enhance/enhancer.h"
+#include "lumaslam/enhance/stereo_enhancement.h"
 #include "lumaslam/io/dataset_reader.h"
-#include "lumaslam/stereo_enhancement.h"
+#include "lumaslam/track/stereo_match_counter.h"
 #include "test_paths.h"
 
 namespace lumaslam {
 namespace {
 
 using enhance::EnhancerParams;
+using enhance::enhanceStereoPair;
 using enhance::StereoMapping;
+using track::StereoMatchCounter;
 
 struct RectifiedPairs {
   std::unique_ptr<StereoMatchCounter> counter;

@@ -21,8 +21,9 @@
 #include "lumaslam/core/settings_file.h"
 #include "lumaslam/enhance/enhancer.h"
 #include "lumaslam/enhance/evaluation.h"
+#include "lumaslam/enhance/stereo_enhancement.h"
 #include "lumaslam/io/dataset_reader.h"
-#include "lumaslam/stereo_enhancement.h"
+#include "lumaslam/track/stereo_match_counter.h"
 
 namespace lumaslam::cli {
 namespace {
@@ -222,7 +223,7 @@ int runEvaluateStereo(const EnhanceOptions& options) {
   if (!calibration || !calibration->right || !calibration->T_left_right)
     fail("{}: no stereo calibration (right camera, T_left_right), cannot rectify",
          options.evaluate_stereo);
-  const StereoMatchCounter counter(*calibration, feature::OrbSettings{});
+  const track::StereoMatchCounter counter(*calibration, feature::OrbSettings{});
   struct Mode {
     std::string name;
     std::optional<EnhancerParams> params;
@@ -263,7 +264,8 @@ int runEvaluateStereo(const EnhanceOptions& options) {
         mode.matches += counter.matches(left, right);
         continue;
       }
-      const auto [left_gray, right_gray] = enhanceStereoPair(*mode.left, *mode.right, left, right);
+      const auto [left_gray, right_gray] =
+          enhance::enhanceStereoPair(*mode.left, *mode.right, left, right);
       mode.matches += counter.matches(left_gray, right_gray);
     }
     ++frames;

@@ -1,11 +1,11 @@
-#include "lumaslam/stereo_enhancement.h"
+#include "lumaslam/track/stereo_match_counter.h"
 
 #include <algorithm>
 #include <array>
 
 #include "lumaslam/core/error.h"
 
-namespace lumaslam {
+namespace lumaslam::track {
 namespace {
 
 camera::PinholeCamera cameraOf(const io::CameraCalibration& c) {
@@ -34,17 +34,6 @@ feature::StereoMatcherParams matcherParams(const camera::StereoRectifier& rectif
 
 }  // namespace
 
-std::pair<cv::Mat, cv::Mat> enhanceStereoPair(enhance::Enhancer& left_enhancer,
-                                              enhance::Enhancer& right_enhancer,
-                                              const cv::Mat& left, const cv::Mat& right) {
-  const auto mapping = left_enhancer.params().stereo;
-  if (mapping == enhance::StereoMapping::kIndependent) {
-    return {left_enhancer.enhance(left).gray, right_enhancer.enhance(right).gray};
-  }
-  const enhance::EnhancementPlan plan = left_enhancer.plan(left);
-  return {left_enhancer.apply(left, plan).gray, left_enhancer.enhanceRightWith(right, plan).gray};
-}
-
 StereoMatchCounter::StereoMatchCounter(const io::CalibrationHint& calibration,
                                        const feature::OrbSettings& orb)
     : rectifier_(rectifierOf(calibration)),
@@ -60,4 +49,4 @@ int StereoMatchCounter::matches(const cv::Mat& left_gray, const cv::Mat& right_g
   return matcher_.match(extractor_.extract(left_gray), extractor_.extract(right_gray)).matched;
 }
 
-}  // namespace lumaslam
+}  // namespace lumaslam::track

@@ -1,25 +1,17 @@
 #pragma once
-// How enhancement changes stereo matching (docs/enhancement.md, Stereo): a rectified pair is
-// enhanced independently (each image its own plan), with the left image's decisions, or with
-// the left image's whole plan; then ORB + StereoMatcher count the matched left features.
-#include <optional>
-#include <string>
+// How many left features of a stereo pair find a stereo match (ORB + feature::StereoMatcher on
+// the rectified pair, as track::FrameBuilder::buildStereo matches them): the measure behind
+// `lumaslam enhance --evaluate-stereo` and docs/enhancement.md, Stereo.
+#include <utility>
 
 #include <opencv2/core.hpp>
 
 #include "lumaslam/camera/stereo_rectifier.h"
-#include "lumaslam/enhance/enhancer.h"
 #include "lumaslam/feature/orb_extractor.h"
 #include "lumaslam/feature/stereo_matcher.h"
 #include "lumaslam/io/dataset_reader.h"
 
-namespace lumaslam {
-
-// Enhances both images of a pair as left_enhancer.params().stereo says (independent: the
-// right image with `right_enhancer`, on its own). Returns the two grays for tracking.
-std::pair<cv::Mat, cv::Mat> enhanceStereoPair(enhance::Enhancer& left_enhancer,
-                                              enhance::Enhancer& right_enhancer,
-                                              const cv::Mat& left, const cv::Mat& right);
+namespace lumaslam::track {
 
 class StereoMatchCounter {
  public:
@@ -37,4 +29,4 @@ class StereoMatchCounter {
   feature::StereoMatcher matcher_;
 };
 
-}  // namespace lumaslam
+}  // namespace lumaslam::track
