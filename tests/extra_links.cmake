@@ -1,6 +1,9 @@
 target_link_libraries(test_feature_orb_extractor PRIVATE opencv_imgcodecs)
 target_link_libraries(test_feature_matchers PRIVATE opencv_imgcodecs)
-target_link_libraries(test_camera_stereo_rectify PRIVATE opencv_features2d opencv_imgcodecs)
+target_link_libraries(test_camera_stereo_rectify PRIVATE lumaslam_io opencv_features2d opencv_imgcodecs)
+# Camera tests read settings files (io), which camera itself does not depend on.
+target_link_libraries(test_camera_pinhole PRIVATE lumaslam_io)
+target_link_libraries(test_camera_stereo_geometry PRIVATE lumaslam_io)
 target_link_libraries(test_synth_render PRIVATE opencv_features2d)
 target_link_libraries(test_synth_io_readers PRIVATE lumaslam_io)
 target_link_libraries(test_detect_worker PRIVATE opencv_videoio)

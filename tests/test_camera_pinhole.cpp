@@ -95,7 +95,7 @@ TEST(PinholeCamera, FromSettingsUsesTheWorkingSize) {
   EXPECT_EQ(cam.size().width, 752);
 
   auto half = settings.camera;
-  half.resizeTo = lumaslam::io::ImageSize{376, 240};
+  half.resizeTo = lumaslam::camera::ImageSize{376, 240};
   const PinholeCamera small = PinholeCamera::fromSettings(half);
   EXPECT_DOUBLE_EQ(small.fx(), 458.654 / 2);
   EXPECT_DOUBLE_EQ(small.cy(), 248.375 / 2);

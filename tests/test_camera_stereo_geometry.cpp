@@ -19,6 +19,16 @@ lumaslam::io::Settings config(const std::string& name) {
   return lumaslam::io::loadSettings(lumaslam::test::sourceDir() / "configs" / name);
 }
 
+StereoGeometry geometryOf(const lumaslam::io::Settings& settings) {
+  return StereoGeometry::fromSettings(settings.camera, settings.stereo.value(),
+                                      settings.depth.thDepth);
+}
+
+StereoRectifier rectifierOf(const lumaslam::io::Settings& settings) {
+  return StereoRectifier::fromSettings(settings.camera, settings.stereo.value(),
+                                       settings.file->origin());
+}
+
 TEST(DepthToMetres, ScalesRawDepthAndKeepsHoles) {
   cv::Mat raw(2, 3, CV_16U, cv::Scalar(0));
   raw.at<uint16_t>(0, 0) = 5000;
@@ -46,7 +56,7 @@ TEST(DepthToMetres, ScalesRawDepthAndKeepsHoles) {
 // u_r = u - bf / z must be where the point really projects in a camera shifted by the baseline.
 TEST(StereoGeometry, VirtualRightColumnMatchesAShiftedCamera) {
   const auto settings = config("kitti_00-02_stereo.yaml");
-  const StereoGeometry geometry = StereoGeometry::fromSettings(settings);
+  const StereoGeometry geometry = geometryOf(settings);
   const PinholeCamera cam = PinholeCamera::fromSettings(settings.camera);
   const Eigen::Vector3d right_in_left(settings.baseline(), 0.0, 0.0);
   for (const Eigen::Vector3d& p_l :
@@ -65,7 +75,7 @@ TEST(StereoGeometry, VirtualRightColumnMatchesAShiftedCamera) {
 }
 
 TEST(StereoGeometry, RgbdUsesTheProjectorBaseline) {
-  const StereoGeometry g = StereoGeometry::fromSettings(config("tum_fr1_rgbd.yaml"));
+  const StereoGeometry g = geometryOf(config("tum_fr1_rgbd.yaml"));
   EXPECT_NEAR(g.bf(), 40.0, 0.01);
   EXPECT_NEAR(g.closeDepth(), 40.0 * 0.07732, 1e-9);
   EXPECT_TRUE(g.isClose(3.0));
@@ -74,9 +84,9 @@ TEST(StereoGeometry, RgbdUsesTheProjectorBaseline) {
 
 TEST(StereoGeometry, UnrectifiedPairNeedsTheRectifier) {
   const auto euroc = config("euroc_stereo.yaml");
-  EXPECT_THROW((void)StereoGeometry::fromSettings(euroc), Error);
-  EXPECT_THROW((void)StereoGeometry::fromSettings(config("euroc_mono.yaml")), Error);
-  const auto rectifier = StereoRectifier::fromSettings(euroc);
+  EXPECT_THROW((void)geometryOf(euroc), Error);
+  EXPECT_FALSE(config("euroc_mono.yaml").stereo);  // a monocular file has no baseline at all
+  const auto rectifier = rectifierOf(euroc);
   const StereoGeometry g = StereoGeometry::fromRectifier(rectifier, euroc.depth.thDepth);
   EXPECT_NEAR(g.bf(), rectifier.rectifiedCamera().fx() * 0.11008, 0.01);
   EXPECT_NEAR(g.closeDepth(), 60.0 * rectifier.baseline(), 1e-9);

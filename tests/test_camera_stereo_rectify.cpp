@@ -122,7 +122,8 @@ TEST_F(EurocStereo, RectifiedGeometryFromCalibration) {
   // The shipped config holds the same calibration.
   const auto settings =
       lumaslam::io::loadSettings(lumaslam::test::sourceDir() / "configs/euroc_stereo.yaml");
-  const auto fromConfig = StereoRectifier::fromSettings(settings);
+  const auto fromConfig =
+      StereoRectifier::fromSettings(settings.camera, *settings.stereo, settings.file->origin());
   EXPECT_NEAR(fromConfig.baseline(), rectifier_->baseline(), 1e-9);
   EXPECT_NEAR(fromConfig.rectifiedCamera().fx(), rect.fx(), 1e-6);
 }
@@ -167,7 +168,7 @@ TEST_F(EurocStereo, BadInputIsAClearError) {
   const auto kitti =
       lumaslam::io::loadSettings(lumaslam::test::sourceDir() / "configs/kitti_04-12_stereo.yaml");
   try {
-    (void)StereoRectifier::fromSettings(kitti);
+    (void)StereoRectifier::fromSettings(kitti.camera, *kitti.stereo, kitti.file->origin());
     FAIL() << "rectified pair accepted";
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("kitti_04-12_stereo.yaml"), std::string::npos);

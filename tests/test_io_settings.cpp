@@ -13,8 +13,8 @@
 #include "test_paths.h"
 
 using lumaslam::Error;
+using lumaslam::camera::CameraModel;
 using lumaslam::core::SettingsFile;
-using lumaslam::io::CameraModel;
 using lumaslam::io::loadSettings;
 using lumaslam::io::SensorType;
 using lumaslam::io::Settings;

@@ -28,7 +28,7 @@ std::string atHalfSize(std::string yaml) {
          "\nCamera.newHeight: " + std::to_string(height / 2) + "\n";
 }
 
-cv::Mat resized(const cv::Mat& image, const io::ImageSize& size, int interpolation) {
+cv::Mat resized(const cv::Mat& image, const camera::ImageSize& size, int interpolation) {
   cv::Mat out;
   cv::resize(image, out, cv::Size(size.width, size.height), 0.0, 0.0, interpolation);
   return out;

@@ -14,7 +14,7 @@ using namespace lumaslam;
 constexpr double kBf = 40.0;  // Kinect-like virtual baseline x fx
 
 track::FrameCamera camera() {
-  return {camera::PinholeCamera(500, 500, 320, 240, io::ImageSize{640, 480}), kBf, 3.0};
+  return {camera::PinholeCamera(500, 500, 320, 240, camera::ImageSize{640, 480}), kBf, 3.0};
 }
 
 struct Scene {

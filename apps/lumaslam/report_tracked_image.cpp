@@ -12,7 +12,8 @@ std::unique_ptr<camera::StereoRectifier> rectifierOf(const io::Settings& setting
   const bool unrectified_pair =
       settings.sensor == io::SensorType::Stereo && settings.stereo && settings.stereo->right;
   if (!unrectified_pair) return nullptr;
-  return std::make_unique<camera::StereoRectifier>(camera::StereoRectifier::fromSettings(settings));
+  return std::make_unique<camera::StereoRectifier>(
+      camera::StereoRectifier::fromSettings(settings.camera, *settings.stereo, settings.origin()));
 }
 
 }  // namespace

@@ -311,7 +311,7 @@ namespace {
 
 // The images' size as tracking sees them, the pixels of moving_features.txt.
 cv::Size workingSize(const io::Settings& settings) {
-  const io::ImageSize size = settings.camera.resizeTo.value_or(settings.camera.size);
+  const camera::ImageSize size = settings.camera.resizeTo.value_or(settings.camera.size);
   return {size.width, size.height};
 }
 

@@ -46,10 +46,10 @@ track::FrameCamera frameCameraFrom(const io::Settings& settings,
 }
 
 // Camera.newWidth/newHeight (ORB-SLAM3's resize): images of the calibrated size are resized
-// to the working size the intrinsics were scaled to (io::CameraSettings::atWorkingSize).
+// to the working size the intrinsics were scaled to (camera::CameraSettings::atWorkingSize).
 // Depth and masks take the nearest pixel: blending would invent depths across object edges.
 // An image of any other size is passed on as it is, for the size checks to name.
-SensorFrame atWorkingSize(const SensorFrame& input, const io::CameraSettings& camera) {
+SensorFrame atWorkingSize(const SensorFrame& input, const camera::CameraSettings& camera) {
   if (!camera.resizeTo) return input;
   const cv::Size calibrated(camera.size.width, camera.size.height);
   const cv::Size working(camera.resizeTo->width, camera.resizeTo->height);
@@ -111,8 +111,8 @@ void Pipeline::setUpStereoRectification() {
         settings_.path.string());
   }
   if (!stereo || !settings_.stereo || !settings_.stereo->right) return;
-  rectifier_ =
-      std::make_unique<camera::StereoRectifier>(camera::StereoRectifier::fromSettings(settings_));
+  rectifier_ = std::make_unique<camera::StereoRectifier>(camera::StereoRectifier::fromSettings(
+      settings_.camera, *settings_.stereo, settings_.origin()));
   const auto& k = rectifier_->rectifiedCamera();
   spdlog::info(
       "{}: stereo pair rectified: fx={:.3f} fy={:.3f} cx={:.3f} cy={:.3f}, baseline {:.4f} m, "

@@ -106,7 +106,8 @@ std::string printRectifiedCamera(const io::Settings& settings) {
   if (settings.sensor != io::SensorType::Stereo || !settings.stereo || !settings.stereo->right) {
     return {};
   }
-  const auto rectifier = camera::StereoRectifier::fromSettings(settings);
+  const auto rectifier =
+      camera::StereoRectifier::fromSettings(settings.camera, *settings.stereo, settings.origin());
   const auto& camera = rectifier.rectifiedCamera();
   return fmt::format(
       "# rectified pair, as tracked: fx {} fy {} cx {} cy {}, no distortion, baseline {} m, "

@@ -6,7 +6,7 @@
 
 namespace lumaslam::camera {
 
-PinholeCamera::PinholeCamera(double fx, double fy, double cx, double cy, io::ImageSize size,
+PinholeCamera::PinholeCamera(double fx, double fy, double cx, double cy, ImageSize size,
                              const std::array<double, 5>& distortion)
     : fx_(fx), fy_(fy), cx_(cx), cy_(cy), size_(size), distortion_(distortion) {
   if (!(fx > 0.0) || !(fy > 0.0))
@@ -16,8 +16,8 @@ PinholeCamera::PinholeCamera(double fx, double fy, double cx, double cy, io::Ima
   }
 }
 
-PinholeCamera PinholeCamera::fromSettings(const io::CameraSettings& settings) {
-  const io::CameraSettings s = settings.atWorkingSize();
+PinholeCamera PinholeCamera::fromSettings(const CameraSettings& settings) {
+  const CameraSettings s = settings.atWorkingSize();
   return PinholeCamera(s.fx, s.fy, s.cx, s.cy, s.size, s.distortion);
 }
 

@@ -8,22 +8,22 @@
 #include <Eigen/Core>
 #include <opencv2/core.hpp>
 
-#include "lumaslam/io/settings.h"
+#include "lumaslam/camera/camera_settings.h"
 
 namespace lumaslam::camera {
 
 class PinholeCamera {
  public:
-  PinholeCamera(double fx, double fy, double cx, double cy, io::ImageSize size,
+  PinholeCamera(double fx, double fy, double cx, double cy, ImageSize size,
                 const std::array<double, 5>& distortion = {});
   // Intrinsics at the working size (after Camera.newWidth/newHeight, if set).
-  static PinholeCamera fromSettings(const io::CameraSettings& settings);
+  static PinholeCamera fromSettings(const CameraSettings& settings);
 
   double fx() const { return fx_; }
   double fy() const { return fy_; }
   double cx() const { return cx_; }
   double cy() const { return cy_; }
-  io::ImageSize size() const { return size_; }
+  ImageSize size() const { return size_; }
   cv::Matx33d K() const;
   cv::Mat distortionCoefficients() const;  // 1x5 CV_64F, OpenCV order
   const std::array<double, 5>& distortion() const { return distortion_; }
@@ -61,7 +61,7 @@ class PinholeCamera {
 
  private:
   double fx_, fy_, cx_, cy_;
-  io::ImageSize size_;
+  ImageSize size_;
   std::array<double, 5> distortion_;
 };
 

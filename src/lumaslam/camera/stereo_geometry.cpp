@@ -13,19 +13,14 @@ StereoGeometry::StereoGeometry(double bf, double baseline, double thDepth)
   }
 }
 
-StereoGeometry StereoGeometry::fromSettings(const io::Settings& settings) {
-  const auto origin = settings.file ? settings.file->origin() : std::string("<settings>");
-  if (!settings.stereo) {
-    fail("{}: a {} sensor has no baseline (needs stereo or rgbd)", origin,
-         io::toString(settings.sensor));
-  }
-  if (settings.stereo->right) {
+StereoGeometry StereoGeometry::fromSettings(const CameraSettings& camera,
+                                            const StereoSettings& stereo, double thDepth) {
+  if (stereo.right) {
     fail(
-        "{}: unrectified stereo pair (Camera2.*): bf is known only after rectification, "
-        "use StereoGeometry::fromRectifier",
-        origin);
+        "unrectified stereo pair (Camera2.*): bf is known only after rectification, "
+        "use StereoGeometry::fromRectifier");
   }
-  return StereoGeometry(settings.bf(), settings.baseline(), settings.depth.thDepth);
+  return StereoGeometry(stereo.baseline * camera.atWorkingSize().fx, stereo.baseline, thDepth);
 }
 
 StereoGeometry StereoGeometry::fromRectifier(const StereoRectifier& rectifier, double thDepth) {

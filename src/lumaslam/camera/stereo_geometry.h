@@ -4,7 +4,7 @@
 // ThDepth baselines are "close" (their depth is trusted for a single-frame triangulation).
 #include <opencv2/core.hpp>
 
-#include "lumaslam/io/settings.h"
+#include "lumaslam/camera/camera_settings.h"
 
 namespace lumaslam::camera {
 
@@ -14,9 +14,11 @@ class StereoGeometry {
  public:
   // bf: baseline (m) times the rectified fx (px); thDepth: close/far threshold in baselines.
   StereoGeometry(double bf, double baseline, double thDepth);
-  // RGB-D or rectified stereo (Camera.type Rectified); an unrectified pair throws Error
-  // (its bf is only known after rectification: use the StereoRectifier overload).
-  static StereoGeometry fromSettings(const io::Settings& settings);
+  // RGB-D or rectified stereo (Camera.type Rectified): camera 1 and its baseline; an
+  // unrectified pair (Camera2.*) throws Error (its bf is only known after rectification: use
+  // fromRectifier).
+  static StereoGeometry fromSettings(const CameraSettings& camera, const StereoSettings& stereo,
+                                     double thDepth);
   static StereoGeometry fromRectifier(const StereoRectifier& rectifier, double thDepth);
 
   double bf() const { return bf_; }

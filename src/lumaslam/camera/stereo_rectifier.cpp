@@ -57,21 +57,17 @@ StereoRectifier::StereoRectifier(const PinholeCamera& left, const PinholeCamera&
   }
 }
 
-StereoRectifier StereoRectifier::fromSettings(const io::Settings& settings, double alpha) {
-  const auto origin = settings.file ? settings.file->origin() : std::string("<settings>");
-  if (settings.sensor != io::SensorType::Stereo || !settings.stereo) {
-    fail("{}: stereo rectification needs System.sensor stereo, found '{}'", origin,
-         io::toString(settings.sensor));
-  }
-  if (!settings.stereo->right) {
+StereoRectifier StereoRectifier::fromSettings(const CameraSettings& left,
+                                              const StereoSettings& stereo, std::string_view origin,
+                                              double alpha) {
+  if (!stereo.right) {
     fail(
         "{}: the stereo pair is already rectified (Camera.type {} without Camera2.*); "
         "nothing to rectify",
-        origin, io::toString(settings.camera.model));
+        origin, toString(left.model));
   }
-  return StereoRectifier(PinholeCamera::fromSettings(settings.camera),
-                         PinholeCamera::fromSettings(*settings.stereo->right),
-                         settings.stereo->T_c1_c2, alpha);
+  return StereoRectifier(PinholeCamera::fromSettings(left),
+                         PinholeCamera::fromSettings(*stereo.right), stereo.T_c1_c2, alpha);
 }
 
 cv::Mat StereoRectifier::remap(const cv::Mat& image, const cv::Mat& mapX, const cv::Mat& mapY,

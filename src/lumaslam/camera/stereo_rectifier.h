@@ -3,15 +3,16 @@
 // rectifying rotations and the common pinhole camera, cv::initUndistortRectifyMap once, then
 // cv::remap per frame. After rectify(), a point's rows agree in both images and the right
 // column is u_r = u_l - bf / z.
+#include <string_view>
 #include <utility>
 #include <vector>
 
 #include <Eigen/Core>
 #include <opencv2/core.hpp>
 
+#include "lumaslam/camera/camera_settings.h"
 #include "lumaslam/camera/pinhole_camera.h"
 #include "lumaslam/core/pose.h"
-#include "lumaslam/io/settings.h"
 
 namespace lumaslam::camera {
 
@@ -21,8 +22,10 @@ class StereoRectifier {
   // alpha: cv::stereoRectify's free scaling, 0 keeps only valid pixels (no black borders).
   StereoRectifier(const PinholeCamera& left, const PinholeCamera& right, const SE3& T_c1_c2,
                   double alpha = 0.0);
-  // Needs a stereo sensor with Camera2.* (an unrectified pair); throws Error naming the file.
-  static StereoRectifier fromSettings(const io::Settings& settings, double alpha = 0.0);
+  // Camera 1 and the pair of a stereo settings file; needs Camera2.* (an unrectified pair),
+  // throws Error naming `origin` (the settings file) otherwise.
+  static StereoRectifier fromSettings(const CameraSettings& left, const StereoSettings& stereo,
+                                      std::string_view origin, double alpha = 0.0);
 
   // Both images remapped (bilinear); each must have the calibrated size.
   std::pair<cv::Mat, cv::Mat> rectify(const cv::Mat& left, const cv::Mat& right) const;

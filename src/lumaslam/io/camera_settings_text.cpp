@@ -7,13 +7,13 @@
 namespace lumaslam::io {
 namespace {
 
-std::string intrinsicsLines(const CameraSettings& camera, const std::string& section) {
+std::string intrinsicsLines(const camera::CameraSettings& camera, const std::string& section) {
   core::SectionPrinter keys(section);
   keys("fx", camera.fx);
   keys("fy", camera.fy);
   keys("cx", camera.cx);
   keys("cy", camera.cy);
-  if (camera.model == CameraModel::Pinhole) {
+  if (camera.model == camera::CameraModel::Pinhole) {
     const char* names[] = {"k1", "k2", "p1", "p2", "k3"};
     for (std::size_t i = 0; i < camera.distortion.size(); ++i) {
       keys(names[i], camera.distortion[i]);
@@ -44,7 +44,7 @@ std::string poseMatrixLines(const core::SettingsFile& file, const std::string& k
 
 }  // namespace
 
-std::string printCameraSettings(const CameraSettings& camera) {
+std::string printCameraSettings(const camera::CameraSettings& camera) {
   core::SectionPrinter keys("Camera");
   keys("type", std::string(toString(camera.model)));
   keys("width", camera.size.width);

@@ -11,7 +11,7 @@ namespace lumaslam::io {
 // Camera.type, Camera1.fx/fy/cx/cy (and k1, k2, p1, p2, k3 for PinHole), Camera.width/height,
 // Camera.newWidth/newHeight when set, Camera.fps, Camera.RGB: the calibrated camera as read,
 // before any resize.
-std::string printCameraSettings(const CameraSettings& camera);
+std::string printCameraSettings(const camera::CameraSettings& camera);
 
 // What a stereo or RGB-D run reads besides camera 1: Camera2.* and Stereo.T_c1_c2 (as the file
 // has it, before its rotation is snapped) for an unrectified pair, Stereo.b (the baseline as

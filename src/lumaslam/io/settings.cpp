@@ -68,10 +68,11 @@ class KeyReader {
   const SettingsFile& file_;
 };
 
-CameraModel readCameraModel(const KeyReader& in) {
+camera::CameraModel readCameraModel(const KeyReader& in) {
   const auto type = in.file().get<std::string>("Camera.type", "PinHole");
-  if (type == "PinHole" || type == "Pinhole" || type == "pinhole") return CameraModel::Pinhole;
-  if (type == "Rectified" || type == "rectified") return CameraModel::Rectified;
+  if (type == "PinHole" || type == "Pinhole" || type == "pinhole")
+    return camera::CameraModel::Pinhole;
+  if (type == "Rectified" || type == "rectified") return camera::CameraModel::Rectified;
   if (type == "KannalaBrandt8") {
     in.file().invalid("Camera.type",
                       "fisheye model 'KannalaBrandt8' is not supported; use "
@@ -82,7 +83,7 @@ CameraModel readCameraModel(const KeyReader& in) {
 }
 
 // Image size, fps and colour order are shared by both cameras (Camera.* in both formats).
-void readImageFormat(const KeyReader& in, CameraSettings& camera) {
+void readImageFormat(const KeyReader& in, camera::CameraSettings& camera) {
   camera.size.width = in.get<int>({"Camera.width"});
   camera.size.height = in.get<int>({"Camera.height"});
   in.requireAbove("Camera.width", camera.size.width, 0);
@@ -100,14 +101,14 @@ void readImageFormat(const KeyReader& in, CameraSettings& camera) {
   if (newWidth) {
     in.requireAbove("Camera.newWidth", *newWidth, 0);
     in.requireAbove("Camera.newHeight", *newHeight, 0);
-    camera.resizeTo = ImageSize{*newWidth, *newHeight};
+    camera.resizeTo = camera::ImageSize{*newWidth, *newHeight};
   }
 }
 
 // Intrinsics of camera `index` (1 or 2); camera 1 also answers to the old Camera.* keys.
-CameraSettings readCamera(const KeyReader& in, int index, CameraModel model,
-                          const CameraSettings& format) {
-  CameraSettings camera = format;
+camera::CameraSettings readCamera(const KeyReader& in, int index, camera::CameraModel model,
+                                  const camera::CameraSettings& format) {
+  camera::CameraSettings camera = format;
   camera.model = model;
   const std::string prefix = fmt::format("Camera{}.", index);
   const std::string oldPrefix = index == 1 ? "Camera." : prefix;
@@ -140,7 +141,7 @@ CameraSettings readCamera(const KeyReader& in, int index, CameraModel model,
   }
   const std::array<std::string_view, 5> names{"k1", "k2", "p1", "p2", "k3"};
   for (std::size_t i = 0; i < names.size(); ++i) {
-    if (model == CameraModel::Pinhole) {
+    if (model == camera::CameraModel::Pinhole) {
       camera.distortion[i] = number(names[i], 0.0).first;
     } else {  // a rectified camera has none (ORB-SLAM3): known keys, values not used
       (void)in.hasAny({prefix + std::string(names[i]), oldPrefix + std::string(names[i])});
@@ -188,18 +189,18 @@ double readBaseline(const KeyReader& in, double fx, std::string_view why) {
       in.file().origin(), why);
 }
 
-StereoSettings readStereo(const KeyReader& in, const CameraSettings& left,
-                          const CameraSettings& format) {
-  StereoSettings stereo;
+camera::StereoSettings readStereo(const KeyReader& in, const camera::CameraSettings& left,
+                                  const camera::CameraSettings& format) {
+  camera::StereoSettings stereo;
   const bool hasRight = in.hasAny({"Camera2.fx"});
-  if (left.model == CameraModel::Pinhole && (hasRight || in.hasAny({"Stereo.T_c1_c2"}))) {
+  if (left.model == camera::CameraModel::Pinhole && (hasRight || in.hasAny({"Stereo.T_c1_c2"}))) {
     if (!hasRight) {
       fail(
           "{}: key 'Camera2.fx' is missing (expected number): a PinHole stereo pair with "
           "Stereo.T_c1_c2 needs the second camera's calibration Camera2.*",
           in.file().origin());
     }
-    stereo.right = readCamera(in, 2, CameraModel::Pinhole, format);
+    stereo.right = readCamera(in, 2, camera::CameraModel::Pinhole, format);
     stereo.T_c1_c2 = readPose(in, "Stereo.T_c1_c2");
     const double norm = stereo.T_c1_c2.translation().norm();
     std::string_view key = "Stereo.T_c1_c2";
@@ -322,33 +323,8 @@ std::string_view toString(SensorType sensor) {
   return "?";
 }
 
-std::string_view toString(CameraModel model) {
-  return model == CameraModel::Pinhole ? "PinHole" : "Rectified";
-}
-
-bool CameraSettings::hasDistortion() const {
-  for (const double d : distortion) {
-    if (d != 0.0) return true;
-  }
-  return false;
-}
-
-CameraSettings CameraSettings::atWorkingSize() const {
-  CameraSettings out = *this;
-  if (!resizeTo) return out;
-  const double sx = static_cast<double>(resizeTo->width) / size.width;
-  const double sy = static_cast<double>(resizeTo->height) / size.height;
-  out.fx *= sx;
-  out.cx *= sx;
-  out.fy *= sy;
-  out.cy *= sy;
-  out.size = *resizeTo;
-  out.resizeTo.reset();
-  return out;
-}
-
 std::string Settings::summary() const {
-  const CameraSettings c = camera.atWorkingSize();
+  const camera::CameraSettings c = camera.atWorkingSize();
   std::string text = fmt::format("{}, {} {}x{} @{} Hz, fx={} fy={} cx={} cy={}{}", toString(sensor),
                                  toString(c.model), c.size.width, c.size.height, c.fps, c.fx, c.fy,
                                  c.cx, c.cy, c.hasDistortion() ? ", distorted" : "");
@@ -371,7 +347,7 @@ Settings Settings::fromFile(std::shared_ptr<const core::SettingsFile> file,
   settings.file = file;
   settings.sensor = chooseSensor(in, sensor);
 
-  CameraSettings format;
+  camera::CameraSettings format;
   readImageFormat(in, format);
   settings.camera = readCamera(in, 1, readCameraModel(in), format);
 
@@ -383,7 +359,7 @@ Settings Settings::fromFile(std::shared_ptr<const core::SettingsFile> file,
   if (settings.sensor == SensorType::Stereo) {
     settings.stereo = readStereo(in, settings.camera, format);
   } else if (settings.sensor == SensorType::Rgbd) {
-    StereoSettings projector;
+    camera::StereoSettings projector;
     projector.baseline =
         readBaseline(in, settings.camera.fx, "RGB-D needs the IR projector baseline");
     projector.T_c1_c2.translation() = Eigen::Vector3d(projector.baseline, 0.0, 0.0);

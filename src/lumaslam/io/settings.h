@@ -4,58 +4,20 @@
 // "File.version 1.0" keys (Camera1.fx, Stereo.b, Stereo.T_c1_c2, RGBD.DepthMapFactor) are read.
 // Modules with their own sections (ORBextractor.* by feature::OrbSettings, Enhancement.*,
 // Detector.*) parse them from `file`, each in one place.
-#include <array>
 #include <filesystem>
 #include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
 
+#include "lumaslam/camera/camera_settings.h"
 #include "lumaslam/core/pose.h"
 #include "lumaslam/core/settings_file.h"
 
 namespace lumaslam::io {
 
 enum class SensorType { Monocular, Stereo, Rgbd };
-// Pinhole: radial-tangential distortion, stereo pairs need rectification (Camera2 + T_c1_c2).
-// Rectified: undistorted, row-aligned stereo pair (KITTI); only camera 1 and Stereo.b are read.
-enum class CameraModel { Pinhole, Rectified };
-
 std::string_view toString(SensorType sensor);  // "mono", "stereo", "rgbd"
-std::string_view toString(CameraModel model);  // "PinHole", "Rectified"
-
-struct ImageSize {
-  int width = 0;
-  int height = 0;
-  friend bool operator==(const ImageSize&, const ImageSize&) = default;
-};
-
-struct CameraSettings {
-  CameraModel model = CameraModel::Pinhole;
-  double fx = 0.0, fy = 0.0, cx = 0.0, cy = 0.0;
-  // OpenCV order k1, k2, p1, p2, k3 (radial-tangential), all zero for Rectified.
-  std::array<double, 5> distortion{};
-  ImageSize size;                     // size of the images as read from the dataset
-  std::optional<ImageSize> resizeTo;  // Camera.newWidth/newHeight: images are resized first
-  double fps = 30.0;
-  // Camera.RGB: colour images handed to the System API are RGB (1) or BGR (0, default, as
-  // ORB-SLAM3). Image files are decoded by OpenCV in BGR whatever the key says.
-  bool rgb = false;
-
-  bool hasDistortion() const;
-  // The calibration of the images after the optional resize (intrinsics scaled, resizeTo
-  // cleared); distortion is unchanged because it acts on normalised coordinates.
-  CameraSettings atWorkingSize() const;
-};
-
-struct StereoSettings {
-  double baseline = 0.0;  // metres (Stereo.b, or Camera.bf / fx, or |t| of T_c1_c2)
-  // Stereo.T_c1_c2: pose of camera 2 in camera 1 (maps camera-2 points into camera 1).
-  // Identity rotation with t = (baseline, 0, 0) for a Rectified pair.
-  SE3 T_c1_c2 = SE3::Identity();
-  // Camera2.*: only for an unrectified (Pinhole) pair; rectify with camera::StereoRectifier.
-  std::optional<CameraSettings> right;
-};
 
 struct DepthSettings {
   // RGB-D only: raw depth value / depthMapFactor = metres (5000 for TUM 16-bit PNGs).
@@ -96,10 +58,10 @@ struct DynamicSettings {
 
 struct Settings {
   SensorType sensor = SensorType::Monocular;
-  CameraSettings camera;  // camera 1 (left camera for stereo, colour camera for RGB-D)
+  camera::CameraSettings camera;  // camera 1 (left camera for stereo, colour camera for RGB-D)
   // Stereo and RGB-D only (RGB-D: the IR projector baseline, for the virtual right
   // coordinate u_r = u - bf / z); nullopt for monocular.
-  std::optional<StereoSettings> stereo;
+  std::optional<camera::StereoSettings> stereo;
   DepthSettings depth;
   SystemSettings system;
   LoopSettings loop;
@@ -118,6 +80,8 @@ struct Settings {
 
   // One line for logs: "stereo, PinHole 752x480 @20 Hz, fx=458.654 ..., b=0.110 m, ...".
   std::string summary() const;
+  // The file's name for messages: its origin when read from text, else its path.
+  std::string origin() const { return file ? file->origin() : path.string(); }
 
   // Parses and checks every key this struct holds; throws Error naming file, key and value.
   // The sensor is `sensor` when given (e.g. a CLI flag), else System.sensor, else inferred
