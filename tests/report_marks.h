@@ -13,6 +13,8 @@
 
 #include <opencv2/imgcodecs.hpp>
 
+#include "base64_text.h"
+
 namespace lumaslam::test {
 
 // timing.csv as rows of column name -> field, keyed by frame.
@@ -81,21 +83,8 @@ inline cv::Mat enhancedImage(const std::string& html, long frame) {
   if (at == std::string::npos) return {};
   const std::string prefix = "src=\"data:image/jpeg;base64,";
   const auto begin = html.find(prefix, at) + prefix.size();
-  const std::string text = html.substr(begin, html.find('"', begin) - begin);
-  static const std::string digits =
-      "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-  std::vector<unsigned char> bytes;
-  unsigned int block = 0;
-  int bits = 0;
-  for (const char c : text) {
-    if (c == '=') break;
-    block = (block << 6) | static_cast<unsigned int>(digits.find(c));
-    bits += 6;
-    if (bits >= 8) {
-      bits -= 8;
-      bytes.push_back(static_cast<unsigned char>((block >> bits) & 0xFF));
-    }
-  }
+  const auto bytes = decodeBase64(html.substr(begin, html.find('"', begin) - begin));
+  if (bytes.empty()) return {};
   return cv::imdecode(bytes, cv::IMREAD_COLOR);
 }
 

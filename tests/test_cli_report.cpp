@@ -16,11 +16,13 @@
 #include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
 
+#include "base64_text.h"
 #include "chromium_page.h"
 #include "test_cli.h"
 
 namespace {
 
+using lumaslam::test::decodeBase64;
 using lumaslam::test::haveChromium;
 using lumaslam::test::openInChromium;
 using lumaslam::test::readRunSummary;
@@ -94,26 +96,6 @@ double median(std::vector<double> values) {
   std::sort(values.begin(), values.end());
   const std::size_t middle = values.size() / 2;
   return values.size() % 2 ? values[middle] : 0.5 * (values[middle - 1] + values[middle]);
-}
-
-std::vector<unsigned char> decodeBase64(const std::string& text) {
-  static const std::string digits =
-      "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-  std::vector<unsigned char> bytes;
-  unsigned int block = 0;
-  int bits = 0;
-  for (const char c : text) {
-    if (c == '=') break;
-    const auto value = digits.find(c);
-    if (value == std::string::npos) return {};
-    block = (block << 6) | static_cast<unsigned int>(value);
-    bits += 6;
-    if (bits >= 8) {
-      bits -= 8;
-      bytes.push_back(static_cast<unsigned char>((block >> bits) & 0xFF));
-    }
-  }
-  return bytes;
 }
 
 std::vector<std::string> imageSources(const std::string& html) {
