@@ -26,11 +26,12 @@ TEST(SystemLoopMono, ClosesASim3LoopOnTheLeftCameraOfLoopStereoAndLowersTheAte) 
   EXPECT_GT(closed.loops.front().current, closed.loops.front().loop + 5);
   EXPECT_NE(closed.loops.front().correction_scale, 1.0);  // a Sim3 loop, not an SE3 one
   EXPECT_EQ(closed.global_ba.completed, static_cast<int>(closed.loops.size()));
-  // Closing the loop must lower the Sim3-aligned ATE clearly. Issue 7's 50 % (asserted for
-  // stereo in test_system_loop) is not met here: 13.0 -> 5.6 mm (43 %) on the branch that
-  // added this test, 13.7 -> 8.8 mm (64 %) once merged with the new ORB descriptors, the
-  // pose solver and the tracker's inlier-fraction rule (2026-12-01). Open in issue 7.
-  EXPECT_LE(closed.ate_sim3, 0.75 * open.ate_sim3);
+  // Closing the loop must lower the Sim3-aligned ATE clearly: within issue 7's 50 %, at
+  // ~2x what is measured (issue 22): 20.5 -> 3.8 mm (19 %), sequential, 2026-12-05
+  // (`test_system_loop_mono` prints "mono, loop closing off/on: ... Sim3 ... mm"). Earlier
+  // code gave 43 % and 64 % (2026-12-01), when the bound was 75 %.
+  EXPECT_LE(closed.ate_sim3, 0.4 * open.ate_sim3) << "open " << open.ate_sim3;
+  EXPECT_LE(closed.ate_sim3, 0.008);
 }
 
 }  // namespace
