@@ -169,14 +169,14 @@ float MotionEvidence::decayed(const Belief& belief, std::size_t frame) const {
 }
 
 MotionVerdict MotionEvidence::update(Frame& current, const Frame& previous,
-                                     const FrameCamera& camera,
-                                     const feature::ScaleLevels& pyramid) {
+                                     const FrameCamera& camera, const feature::ScaleLevels& pyramid,
+                                     const RigidVerdict& rigidity) {
   MotionVerdict verdict;
   if (!params_.enabled || !current.T_c_w || current.size() == 0) return verdict;
   verdict.evidence_used = poseTrusted(current);
   current.static_log_odds.assign(current.size(), 0.0F);
   current.features->moving.assign(current.size(), 0);
-  updatePointBeliefs(current, camera, pyramid, verdict.evidence_used, verdict);
+  updatePointBeliefs(current, camera, pyramid, verdict.evidence_used, rigidity, verdict);
   if (previous.T_c_w && previous.features && previous.features->descriptors.rows > 0) {
     updateFeatureBeliefs(current, previous, camera, pyramid, verdict.evidence_used);
   }
@@ -238,7 +238,8 @@ bool MotionEvidence::poseTrusted(const Frame& current) const {
 // Map points: the residual against the frame's pose, whether or not pose optimisation kept it.
 void MotionEvidence::updatePointBeliefs(Frame& current, const FrameCamera& camera,
                                         const feature::ScaleLevels& pyramid, bool moving_evidence,
-                                        MotionVerdict& verdict) {
+                                        const RigidVerdict& rigidity, MotionVerdict& verdict) {
+  constexpr double kBroken = -1.5;  // as a residual at 4x its threshold
   for (std::size_t i = 0; i < current.size(); ++i) {
     const auto& point = current.points[i];
     if (!point || point->isBad() || point->observationCount() < 1) continue;
@@ -246,6 +247,8 @@ void MotionEvidence::updatePointBeliefs(Frame& current, const FrameCamera& camer
     if (!residual) continue;
     double evidence = staticEvidence(residual->chi2, residual->threshold);
     if (!moving_evidence) evidence = std::max(evidence, 0.0);
+    if (rigidity.brokenAt(i))
+      evidence = kBroken;  // pose-free: holds also when the pose is in doubt
     auto& belief = points_[point->id()];
     belief.log_odds = static_cast<float>(std::clamp(decayed(belief, current.index) + evidence,
                                                     -params_.max_log_odds, params_.max_log_odds));

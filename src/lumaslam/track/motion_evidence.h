@@ -17,6 +17,7 @@
 #include "lumaslam/map/ids.h"
 #include "lumaslam/track/frame.h"
 #include "lumaslam/track/frame_camera.h"
+#include "lumaslam/track/rigid_consensus.h"
 
 namespace lumaslam::track {
 
@@ -39,6 +40,10 @@ struct MotionEvidenceParams {
   // A frame where more of its matched map points fail than this gives no "moving" evidence:
   // its pose is in doubt, and a wrong pose would make the static scene look as if it moved.
   double max_outlier_fraction = 0.5;
+  // Pose-free test of matched points with depth (rigid_consensus.h; RGB-D and stereo only),
+  // Dynamic.rigidConsensus. Off by default until measured on real data (docs/dynamic.md).
+  bool rigidity = false;
+  RigidConsensusParams rigid;
 };
 
 // Log-likelihood ratio static : moving of one residual, from its chi-square value over the
@@ -59,9 +64,10 @@ class MotionEvidence {
   // After `current`'s pose: updates the beliefs of its matched map points and of its features
   // (carried over from their match in `previous`, which has a pose), and flags the moving
   // features in current.features->moving. Map points that are dynamic now are returned; the
-  // caller leaves them out of the pose.
+  // caller leaves them out of the pose. `rigidity` (the frame's rigid consensus, may be empty)
+  // overrules the residuals of the points it found broken: they count as moving.
   MotionVerdict update(Frame& current, const Frame& previous, const FrameCamera& camera,
-                       const feature::ScaleLevels& pyramid);
+                       const feature::ScaleLevels& pyramid, const RigidVerdict& rigidity = {});
 
   bool enabled() const { return params_.enabled; }
   // Static beyond doubt: log-odds at least params.confirmed_above at frame `frame`.
@@ -83,7 +89,7 @@ class MotionEvidence {
   float decayed(const Belief& belief, std::size_t frame) const;
   void updatePointBeliefs(Frame& current, const FrameCamera& camera,
                           const feature::ScaleLevels& pyramid, bool moving_evidence,
-                          MotionVerdict& verdict);
+                          const RigidVerdict& rigidity, MotionVerdict& verdict);
   void updateFeatureBeliefs(Frame& current, const Frame& previous, const FrameCamera& camera,
                             const feature::ScaleLevels& pyramid, bool moving_evidence);
   bool poseTrusted(const Frame& current) const;

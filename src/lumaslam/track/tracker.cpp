@@ -60,6 +60,7 @@ Tracker::Tracker(std::shared_ptr<map::Map> map, KeyFrameSink& mapper, const Fram
 TrackingOutcome Tracker::track(Frame frame) {
   std::lock_guard map_lock(map_->updateMutex());
   current_ = std::move(frame);
+  rigidity_ = {};
   dynamic_memory_.beginFrame(current_.index, current_.dynamic_boxes);
   TrackingOutcome outcome;
   const TrackingState previous = state_;
@@ -366,7 +367,7 @@ int Tracker::optimizeCurrentPose(const std::vector<bool>* use, int rounds) {
   std::vector<std::size_t> feature_of;
   for (std::size_t i = 0; i < current_.size(); ++i) {
     auto& point = current_.points[i];
-    if (point && leftOutOfPose(*point)) point = nullptr;
+    if (point && leftOutOfPose(*point, i)) point = nullptr;
     if (!point) continue;
     if (use && !(*use)[i]) {
       current_.outliers[i] = true;
@@ -423,7 +424,9 @@ bool Tracker::trackWithMotionModel() {
     spdlog::debug("frame {}: motion model found {} matches", current_.index, matches);
     return false;
   }
-  if (optimizeCurrentPose() == 0) return false;
+  testRigidity();
+  const auto use = notRigidlyBroken();
+  if (optimizeCurrentPose(rigidity_.informative() ? &use : nullptr) == 0) return false;
   return discardOutliers() >= 10;
 }
 
@@ -481,7 +484,9 @@ bool Tracker::trackFromPose(const SE3& T_c_w_prior, float radius) {
                   matches);
     return false;
   }
-  if (optimizeCurrentPose() == 0) return false;
+  testRigidity();
+  const auto use = notRigidlyBroken();
+  if (optimizeCurrentPose(rigidity_.informative() ? &use : nullptr) == 0) return false;
   return discardOutliers() >= 10;
 }
 
@@ -650,6 +655,7 @@ int Tracker::searchLocalPoints() {
 bool Tracker::trackLocalMap(TrackingOutcome& outcome) {
   updateLocalMap();
   searchLocalPoints();
+  testRigidity();
   optimizeConfirmedPointsFirst();
   cullDynamicPoints();
   inliers_ = 0;
@@ -673,42 +679,75 @@ void Tracker::optimizeConfirmedPointsFirst() {
     optimizeCurrentPose();
     return;
   }
-  std::vector<bool> confirmed(current_.size(), false);
-  int count = 0;
-  for (std::size_t i = 0; i < current_.size(); ++i) {
-    const auto& point = current_.points[i];
-    if (point && motion_evidence_.isConfirmedStatic(point->id(), current_.index)) {
-      confirmed[i] = true;
-      ++count;
-    }
+  auto trusted = confirmedStaticMatches();
+  int count = static_cast<int>(std::count(trusted.begin(), trusted.end(), true));
+  // A map's first frames have nothing confirmed yet: the rigid consensus stands in for it.
+  if (count < params_.min_confirmed_points && rigidity_.informative() &&
+      rigidity_.holds >= params_.min_confirmed_points) {
+    for (std::size_t i = 0; i < current_.size(); ++i) trusted[i] = rigidity_.holdsAt(i);
+    count = rigidity_.holds;
   }
   if (count < params_.min_confirmed_points) {
-    optimizeCurrentPose();
+    const auto use = notRigidlyBroken();
+    optimizeCurrentPose(rigidity_.informative() ? &use : nullptr);
     return;
   }
-  optimizeCurrentPose(&confirmed);
+  optimizeCurrentPose(&trusted);
+  joinMatchesThatFit(trusted, count);
+}
+
+// Matched points confirmed static by earlier frames, less those the rigid consensus says
+// moved.
+std::vector<bool> Tracker::confirmedStaticMatches() const {
+  std::vector<bool> confirmed(current_.size(), false);
+  for (std::size_t i = 0; i < current_.size(); ++i) {
+    const auto& point = current_.points[i];
+    confirmed[i] = point && !rigidity_.brokenAt(i) &&
+                   motion_evidence_.isConfirmedStatic(point->id(), current_.index);
+  }
+  return confirmed;
+}
+
+// After the pose from the `trusted` matches: the others join if they fit it.
+void Tracker::joinMatchesThatFit(const std::vector<bool>& trusted, int trusted_count) {
   std::vector<bool> fits(current_.size(), false);
   int joining = 0;
   for (std::size_t i = 0; i < current_.size(); ++i) {
     const auto& point = current_.points[i];
     if (!point) continue;
-    fits[i] = confirmed[i] ? !current_.outliers[i]
-                           : motion_evidence_.fitsPose(current_, i, camera_, *pyramid_);
-    if (fits[i] && !confirmed[i]) ++joining;
+    fits[i] = trusted[i] ? !current_.outliers[i]
+                         : !rigidity_.brokenAt(i) &&
+                               motion_evidence_.fitsPose(current_, i, camera_, *pyramid_);
+    if (fits[i] && !trusted[i]) ++joining;
   }
   // A few joining points would barely move the pose: they count as inliers of it as it is.
-  if (20 * joining < count) {
+  if (20 * joining < trusted_count) {
     for (std::size_t i = 0; i < current_.size(); ++i) {
-      if (fits[i] && !confirmed[i]) current_.outliers[i] = false;
+      if (fits[i] && !trusted[i]) current_.outliers[i] = false;
     }
     return;
   }
   optimizeCurrentPose(&fits, 2);  // from a pose near the optimum: two rounds
 }
 
-bool Tracker::leftOutOfPose(const map::MapPoint& point) const {
-  return dynamic_memory_.isDynamic(point.id()) ||
-         motion_evidence_.isDynamic(point.id(), current_.index);
+void Tracker::testRigidity() {
+  rigidity_ = {};
+  if (!motion_evidence_.enabled() || !params_.motion_evidence.rigidity || camera_.bf <= 0.0) return;
+  rigidity_ = rigidConsensus(current_, camera_.intrinsics(), params_.motion_evidence.rigid);
+}
+
+std::vector<bool> Tracker::notRigidlyBroken() const {
+  std::vector<bool> use(current_.size(), true);
+  for (std::size_t i = 0; i < current_.size(); ++i) use[i] = !rigidity_.brokenAt(i);
+  return use;
+}
+
+// Points the detector's memory or the residuals of recent frames call moving are left out, and
+// those the rigid consensus of this frame finds moved.
+bool Tracker::leftOutOfPose(const map::MapPoint& point, std::size_t feature) const {
+  if (rigidity_.brokenAt(feature)) return true;
+  if (dynamic_memory_.isDynamic(point.id())) return true;
+  return motion_evidence_.isDynamic(point.id(), current_.index);
 }
 
 // Class-free motion evidence (issue 16): map points whose residuals keep saying they moved
@@ -720,7 +759,7 @@ bool Tracker::leftOutOfPose(const map::MapPoint& point) const {
 void Tracker::excludeMovingPoints(TrackingOutcome& outcome) {
   if (!motion_evidence_.enabled()) return;
   const auto start = std::chrono::steady_clock::now();
-  const auto verdict = motion_evidence_.update(current_, last_, camera_, *pyramid_);
+  const auto verdict = motion_evidence_.update(current_, last_, camera_, *pyramid_, rigidity_);
   outcome.moving_features = static_cast<int>(verdict.moving_features);
   outcome.moving_points.clear();
   if (verdict.moving_features > 0) {  // else FeatureSet::moving may be unset

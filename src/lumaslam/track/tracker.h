@@ -163,7 +163,11 @@ class Tracker {
   int discardOutliers();
   void cullDynamicPoints();
   void excludeMovingPoints(TrackingOutcome& outcome);
-  bool leftOutOfPose(const map::MapPoint& point) const;
+  bool leftOutOfPose(const map::MapPoint& point, std::size_t feature) const;
+  void testRigidity();
+  std::vector<bool> confirmedStaticMatches() const;
+  void joinMatchesThatFit(const std::vector<bool>& trusted, int trusted_count);
+  std::vector<bool> notRigidlyBroken() const;
   void updateLocalMap();
   std::shared_ptr<map::MapPoint> newPointFromDepth(std::size_t i,
                                                    const std::shared_ptr<map::KeyFrame>& kf);
@@ -194,6 +198,7 @@ class Tracker {
   map::MapId active_map_ = 0;         // the map new keyframes start in (follows merges)
   DynamicPointMemory dynamic_memory_;
   MotionEvidence motion_evidence_;
+  RigidVerdict rigidity_;  // of current_'s matches as they are now (rigid_consensus.h)
   bool localization_only_ = false;
   TrajectoryRecorder recorder_;
   std::unique_ptr<MonocularInitializer> monocular_initializer_;

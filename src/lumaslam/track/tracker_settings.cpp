@@ -43,6 +43,7 @@ void visitDynamicKeys(Keys& keys, MotionEvidenceParams& p) {
   keys("regionMovingBelow", p.region_moving_below, Range::between(-20.0, 0.0));
   keys("regionRestingAbove", p.region_resting_above, Range::between(0.0, 20.0));
   keys("maxOutlierFraction", p.max_outlier_fraction, Range::between(0.0, 1.0));
+  keys("rigidConsensus", p.rigidity);
 }
 
 // Initializer.*: the monocular two-view start (MonocularInitParams and its TwoViewParams;
