@@ -1,8 +1,9 @@
 #pragma once
 // A FIFO of work items handled one at a time by a handler, either in the queue's own thread
-// (startThread) or in the owner's thread (processPending, the Pipeline's sequential mode). The
-// keyframe queues of LocalMapper and LoopCloser. The owner starts the thread once the state its
-// handler uses is built, and calls shutdown() before destroying that state.
+// (startThread) or in the owner's thread (processOne / processPending, the Pipeline's
+// sequential mode). The one queue type of the pipeline: every core::Stage (stage.h) runs on
+// one. The owner starts the thread once the state its handler uses is built, and calls
+// shutdown() or stop() before destroying that state.
 #include <condition_variable>
 #include <cstddef>
 #include <deque>
@@ -14,11 +15,18 @@
 
 namespace lumaslam::core {
 
+// What push() does when the queue holds `capacity` items.
+enum class WhenFull {
+  drop_oldest,  // the oldest queued item is dropped (loop closing's keyframes)
+  block,        // push waits for room; without a thread it first handles the oldest item itself
+};
+
 template <typename T>
 class WorkQueue {
  public:
   struct Options {
-    std::size_t capacity = 0;  // 0: unbounded; beyond it push() drops the oldest item
+    std::size_t capacity = 0;  // 0: unbounded
+    WhenFull when_full = WhenFull::drop_oldest;
     // Called with the queue's lock held, after an item is queued / before one is handled.
     std::function<void()> on_push = {};
     std::function<void()> on_take = {};
@@ -36,19 +44,32 @@ class WorkQueue {
     if (!thread_.joinable() && !stopping_) thread_ = std::thread([this] { run(); });
   }
 
-  void push(T item) {
+  // Returns false, dropping the item, once stop() was called.
+  bool push(T item) {
     {
-      std::lock_guard lock(mutex_);
+      std::unique_lock lock(mutex_);
+      if (options_.when_full == WhenFull::block) makeRoom(lock);
+      if (stopped_) return false;
       items_.push_back(std::move(item));
       while (options_.capacity > 0 && items_.size() > options_.capacity) items_.pop_front();
       if (options_.on_push) options_.on_push();
     }
     changed_.notify_all();
+    return true;
   }
 
+  // Sequential mode: handles the oldest queued item now, in the caller's thread; false when
+  // there was none.
+  bool processOne() {
+    auto item = take();
+    if (!item) return false;
+    handler_(*item);
+    return true;
+  }
   // Sequential mode: handles every queued item now, in the caller's thread.
   void processPending() {
-    while (auto item = take()) handler_(*item);
+    while (processOne()) {
+    }
   }
 
   // Threaded mode: blocks until the queue is empty and no item is being handled.
@@ -70,7 +91,20 @@ class WorkQueue {
       stopping_ = true;
     }
     changed_.notify_all();
-    if (thread_.joinable()) thread_.join();
+    join();
+  }
+
+  // Drops the queued items, lets the one being handled finish, joins (idempotent); later
+  // pushes are refused.
+  void stop() {
+    {
+      std::lock_guard lock(mutex_);
+      stopping_ = true;
+      stopped_ = true;
+      items_.clear();
+    }
+    changed_.notify_all();
+    join();
   }
 
   bool idle() const {
@@ -85,6 +119,27 @@ class WorkQueue {
 
  private:
   bool idleLocked() const { return (items_.empty() && !busy_) || !thread_.joinable(); }
+  bool full() const { return options_.capacity > 0 && items_.size() >= options_.capacity; }
+
+  // Blocking push: waits for the thread to take an item or, without a thread, handles the
+  // oldest items in the caller's thread until there is room.
+  void makeRoom(std::unique_lock<std::mutex>& lock) {
+    if (thread_.joinable()) {
+      changed_.wait(lock, [this] { return stopped_ || !full(); });
+      return;
+    }
+    while (!stopped_ && full()) {
+      T oldest = popFront();
+      lock.unlock();
+      handler_(oldest);
+      lock.lock();
+    }
+  }
+
+  void join() {
+    if (thread_.joinable() && thread_.get_id() != std::this_thread::get_id()) thread_.join();
+  }
+
   std::optional<T> take() {
     std::lock_guard lock(mutex_);
     if (items_.empty()) return std::nullopt;
@@ -108,6 +163,7 @@ class WorkQueue {
         item = popFront();
         busy_ = true;
       }
+      changed_.notify_all();  // room for a blocked push
       handler_(*item);
       {
         std::lock_guard lock(mutex_);
@@ -125,6 +181,7 @@ class WorkQueue {
   std::deque<T> items_;
   bool busy_ = false;
   bool stopping_ = false;
+  bool stopped_ = false;  // stop(): queued items dropped, pushes refused
   std::thread thread_;
 };
 
