@@ -388,10 +388,10 @@ LoopCloser::LoopCloser(std::shared_ptr<map::Map> map, const Vocabulary& vocabula
       params_(params),
       pause_mapping_(std::move(pause_mapping)),
       detector_(database_, *map_, params.detector),
+      global_ba_([this](GlobalBARun&) { runGlobalBundleAdjustment(); },
+                 {.threaded = params.threaded, .capacity = 1}),
       queue_([this](const auto& keyframe) { process(keyframe); },
-             {.capacity = params.queue_capacity}) {
-  if (params_.threaded) queue_.startThread();
-}
+             {.threaded = params.threaded, .capacity = params.queue_capacity}) {}
 
 LoopCloser::~LoopCloser() {
   shutdown();
@@ -401,44 +401,35 @@ void LoopCloser::shutdown() {
   stopping_ = true;
   abort_global_ba_ = true;
   queue_.shutdown();
-  stopGlobalBundleAdjustment();
+  global_ba_.shutdown();  // a run still queued returns at once: aborted
 }
 
 void LoopCloser::stopGlobalBundleAdjustment() {
-  if (!global_ba_thread_.joinable()) return;
+  if (global_ba_.idle()) return;
   abort_global_ba_ = true;
-  global_ba_thread_.join();
+  global_ba_.waitUntilIdle();
 }
 
 void LoopCloser::startGlobalBundleAdjustment() {
-  stopGlobalBundleAdjustment();  // never two at once (correctLoop has normally joined it)
+  stopGlobalBundleAdjustment();  // never two at once (correctLoop has normally stopped it)
   {
     std::lock_guard lock(global_ba_mutex_);
     if (stopping_ && params_.threaded) return;
     abort_global_ba_ = false;
-    global_ba_running_ = true;
     ++global_ba_stats_.started;
   }
-  if (params_.threaded) {
-    global_ba_thread_ = std::thread([this] { runGlobalBundleAdjustment(); });
-  } else {
-    runGlobalBundleAdjustment();
-  }
+  global_ba_.push(GlobalBARun{});
+  if (!params_.threaded) global_ba_.processPending();
 }
 
-bool LoopCloser::runGlobalBundleAdjustment() {
+void LoopCloser::runGlobalBundleAdjustment() {
   const bool done = globalBundleAdjustment();
-  {
-    std::lock_guard lock(global_ba_mutex_);
-    global_ba_running_ = false;
-    if (done) {
-      ++global_ba_stats_.completed;
-    } else if (abort_global_ba_) {
-      ++global_ba_stats_.aborted;
-    }
+  std::lock_guard lock(global_ba_mutex_);
+  if (done) {
+    ++global_ba_stats_.completed;
+  } else if (abort_global_ba_) {
+    ++global_ba_stats_.aborted;
   }
-  global_ba_changed_.notify_all();
-  return done;
 }
 
 GlobalBAStats LoopCloser::globalBundleAdjustmentStats() const {
@@ -456,8 +447,7 @@ void LoopCloser::processPending() {
 
 void LoopCloser::waitUntilIdle() {
   queue_.waitUntilIdle();  // a keyframe being handled may have started a global BA
-  std::unique_lock lock(global_ba_mutex_);
-  global_ba_changed_.wait(lock, [this] { return !global_ba_running_; });
+  global_ba_.waitUntilIdle();
 }
 
 std::vector<ClosedLoop> LoopCloser::closedLoops() const {

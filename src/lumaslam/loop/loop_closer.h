@@ -24,19 +24,17 @@
 //  4. optionally a global bundle adjustment of every keyframe and point (origin fixed), solved
 //     on a snapshot without locks and written back with mapping paused; keyframes added
 //     meanwhile follow their nearest ancestor in the spanning tree (ORB-SLAM's RunGlobalBA).
-//     Threaded mode runs it in its own thread, so loop detection goes on; it is aborted (its
-//     result discarded, the map untouched) when a new loop is corrected and at shutdown.
+//     Threaded mode runs it in a stage of its own, so loop detection goes on; it is aborted
+//     (its result discarded, the map untouched) when a new loop is corrected and at shutdown.
 // A rejected candidate leaves the map untouched.
 #include <atomic>
-#include <condition_variable>
 #include <functional>
 #include <memory>
 #include <mutex>
 #include <optional>
-#include <thread>
 #include <vector>
 
-#include "lumaslam/core/work_queue.h"
+#include "lumaslam/core/stage.h"
 #include "lumaslam/feature/hamming.h"
 #include "lumaslam/loop/keyframe_database.h"
 #include "lumaslam/loop/loop_detector.h"
@@ -147,10 +145,12 @@ class LoopCloser {
                                            const FeatureVector& current_nodes,
                                            const std::shared_ptr<map::KeyFrame>& candidate,
                                            const FeatureVector& candidate_nodes) const;
-  // Aborts and joins a running global BA (threaded mode).
+  struct GlobalBARun {};  // the global BA stage's input: adjust the whole atlas now
+
+  // Aborts a running global BA and waits for it (threaded mode).
   void stopGlobalBundleAdjustment();
   void startGlobalBundleAdjustment();
-  bool runGlobalBundleAdjustment();
+  void runGlobalBundleAdjustment();
 
   std::shared_ptr<map::Map> map_;
   const Vocabulary& vocabulary_;
@@ -166,11 +166,10 @@ class LoopCloser {
   std::atomic<bool> abort_global_ba_{false};
   std::atomic<bool> stopping_{false};
   mutable std::mutex global_ba_mutex_;
-  std::condition_variable global_ba_changed_;
-  bool global_ba_running_ = false;  // guarded by global_ba_mutex_
-  GlobalBAStats global_ba_stats_;   // guarded by global_ba_mutex_
-  std::thread global_ba_thread_;    // started and joined by the closer's thread (or shutdown)
-  core::WorkQueue<std::shared_ptr<map::KeyFrame>> queue_;  // last: its thread uses the above
+  GlobalBAStats global_ba_stats_;  // guarded by global_ba_mutex_
+  // Last: their threads use the above; the keyframe stage's thread starts global BA runs.
+  core::Stage<GlobalBARun> global_ba_;
+  core::Stage<std::shared_ptr<map::KeyFrame>> queue_;
 };
 
 }  // namespace lumaslam::loop

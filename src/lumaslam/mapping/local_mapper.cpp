@@ -38,10 +38,8 @@ LocalMapper::LocalMapper(std::shared_ptr<map::Map> map, const track::FrameCamera
       pyramid_(std::move(pyramid)),
       params_(params),
       // A waiting keyframe stops the running bundle adjustment; taking one clears the request.
-      queue_([this](const auto& keyframe) { process(keyframe); },
-             {.on_push = [this] { abort_ba_ = true; }, .on_take = [this] { abort_ba_ = false; }}) {
-  if (params_.threaded) queue_.startThread();
-}
+      queue_([this](const auto& keyframe) { process(keyframe); }, {.threaded = params.threaded},
+             {.on_push = [this] { abort_ba_ = true; }, .on_take = [this] { abort_ba_ = false; }}) {}
 
 LocalMapper::~LocalMapper() {
   shutdown();

@@ -11,7 +11,7 @@
 #include <memory>
 #include <mutex>
 
-#include "lumaslam/core/work_queue.h"
+#include "lumaslam/core/stage.h"
 #include "lumaslam/feature/scale_levels.h"
 #include "lumaslam/map/map.h"
 #include "lumaslam/track/frame_camera.h"
@@ -78,7 +78,7 @@ class LocalMapper : public track::KeyFrameSink {
   std::atomic<bool> abort_ba_{false};
   std::atomic<std::size_t> processed_{0};
   std::list<std::shared_ptr<map::MapPoint>> recent_points_;
-  core::WorkQueue<std::shared_ptr<map::KeyFrame>> queue_;  // last: its thread uses the above
+  core::Stage<std::shared_ptr<map::KeyFrame>> queue_;  // last: its thread uses the above
 };
 
 }  // namespace lumaslam::mapping
