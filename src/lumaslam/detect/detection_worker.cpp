@@ -13,15 +13,27 @@ WorkerParams WorkerParams::from(const DetectorParams& params) {
   return {params.stride, params.queue_capacity, params.propagation};
 }
 
-DetectionWorker::DetectionWorker(std::unique_ptr<Detector> detector, WorkerParams params)
-    : detector_(std::move(detector)), params_(params) {
-  if (!detector_) fail("DetectionWorker: no detector");
-  if (params_.stride < 1) fail("DetectionWorker: stride must be >= 1, found {}", params_.stride);
-  if (params_.queue_capacity < 1) {
-    fail("DetectionWorker: queue capacity must be >= 1, found {}", params_.queue_capacity);
+WorkerParams DetectionWorker::validated(WorkerParams params) {
+  if (params.stride < 1) fail("DetectionWorker: stride must be >= 1, found {}", params.stride);
+  if (params.queue_capacity < 1) {
+    fail("DetectionWorker: queue capacity must be >= 1, found {}", params.queue_capacity);
   }
-  if (params_.threaded) thread_ = std::thread([this] { run(); });
+  return params;
 }
+
+std::unique_ptr<Detector> DetectionWorker::nonNull(std::unique_ptr<Detector> detector) {
+  if (!detector) fail("DetectionWorker: no detector");
+  return detector;
+}
+
+DetectionWorker::DetectionWorker(std::unique_ptr<Detector> detector, WorkerParams params)
+    : detector_(nonNull(std::move(detector))),
+      params_(validated(params)),
+      stage_([this](Job& job) { return process(job); },
+             [this](Outcome&& outcome) { store(std::move(outcome)); },
+             {.threaded = params_.threaded,
+              .capacity = static_cast<std::size_t>(params_.queue_capacity),
+              .when_full = core::WhenFull::block}) {}
 
 DetectionWorker::~DetectionWorker() {
   stop();
@@ -31,35 +43,34 @@ void DetectionWorker::stop() {
   {
     std::lock_guard lock(mutex_);
     stopping_ = true;
-    queue_.clear();
   }
-  work_available_.notify_all();
-  space_available_.notify_all();
+  stage_.stop();
   result_ready_.notify_all();
-  if (thread_.joinable() && thread_.get_id() != std::this_thread::get_id()) thread_.join();
 }
 
 void DetectionWorker::push(std::int64_t frame_index, double timestamp, const cv::Mat& image) {
   // Copy outside the lock: callers often reuse their frame buffer (cv::VideoCapture does).
   Job job{frame_index, timestamp, image.clone(), 0};
-  std::unique_lock lock(mutex_);
-  if (last_pushed_ && frame_index <= *last_pushed_) {
-    fail("DetectionWorker: frame index {} pushed after {}; indices must increase", frame_index,
-         *last_pushed_);
+  {
+    std::lock_guard lock(mutex_);
+    if (stopping_) fail("DetectionWorker: frame {} pushed after stop()", frame_index);
+    if (last_pushed_ && frame_index <= *last_pushed_) {
+      fail("DetectionWorker: frame index {} pushed after {}; indices must increase", frame_index,
+           *last_pushed_);
+    }
+    job.sequence = pushed_count_++;
+    last_pushed_ = frame_index;
+    pending_.insert(frame_index);
   }
-  const auto has_room = [&] { return static_cast<int>(queue_.size()) < params_.queue_capacity; };
-  if (params_.threaded) {
-    space_available_.wait(lock, [&] { return stopping_ || has_room(); });
-  } else {
-    while (!stopping_ && !has_room()) processNextJob(lock);
+  if (!stage_.push(std::move(job))) {  // stopped while waiting for room
+    std::lock_guard lock(mutex_);
+    pending_.erase(frame_index);
+    fail("DetectionWorker: frame {} pushed after stop()", frame_index);
   }
-  if (stopping_) fail("DetectionWorker: frame {} pushed after stop()", frame_index);
-  job.sequence = pushed_count_++;
-  last_pushed_ = frame_index;
-  pending_.insert(frame_index);
-  queue_.push_back(std::move(job));
-  lock.unlock();
-  work_available_.notify_one();
+}
+
+bool DetectionWorker::readyLocked(std::int64_t frame_index) const {
+  return stopping_ || results_.count(frame_index) != 0;
 }
 
 FrameDetections DetectionWorker::take(std::int64_t frame_index) {
@@ -67,11 +78,15 @@ FrameDetections DetectionWorker::take(std::int64_t frame_index) {
   if (pending_.count(frame_index) == 0) {
     fail("DetectionWorker: frame {} was never pushed or was already taken", frame_index);
   }
-  const auto ready = [&] { return stopping_ || results_.count(frame_index) != 0; };
   if (!params_.threaded) {
-    while (!ready() && !queue_.empty()) processNextJob(lock);
+    while (!readyLocked(frame_index)) {
+      lock.unlock();
+      const bool processed = stage_.processOne();
+      lock.lock();
+      if (!processed) break;
+    }
   }
-  result_ready_.wait(lock, ready);
+  result_ready_.wait(lock, [&] { return readyLocked(frame_index); });
   const auto it = results_.find(frame_index);
   if (it == results_.end())
     fail("DetectionWorker: stopped before frame {} was detected", frame_index);
@@ -83,28 +98,16 @@ FrameDetections DetectionWorker::take(std::int64_t frame_index) {
   return std::move(outcome.result);
 }
 
-void DetectionWorker::run() {
-  std::unique_lock lock(mutex_);
-  while (true) {
-    work_available_.wait(lock, [&] { return stopping_ || !queue_.empty(); });
+void DetectionWorker::store(Outcome&& outcome) {
+  {
+    std::lock_guard lock(mutex_);
     if (stopping_) return;
-    processNextJob(lock);
+    results_.emplace(outcome.result.frame_index, std::move(outcome));
   }
-}
-
-void DetectionWorker::processNextJob(std::unique_lock<std::mutex>& lock) {
-  Job job = std::move(queue_.front());
-  queue_.pop_front();
-  lock.unlock();
-  space_available_.notify_one();
-  Outcome outcome = process(job);
-  lock.lock();
-  if (stopping_) return;
-  results_.emplace(job.frame_index, std::move(outcome));
   result_ready_.notify_all();
 }
 
-DetectionWorker::Outcome DetectionWorker::process(const Job& job) {
+DetectionWorker::Outcome DetectionWorker::process(Job& job) {
   Outcome outcome;
   outcome.result.frame_index = job.frame_index;
   outcome.result.timestamp = job.timestamp;

@@ -9,19 +9,20 @@
 // between get the previous frame's boxes moved by optical flow (propagateDetections), so
 // detection keeps the camera's pace as long as one inference takes less than k frames.
 // Frames are processed in push order, so results are the same as running sequentially.
-// Sequential mode (WorkerParams::threaded false, System.sequential) starts no thread: take(i)
-// detects the queued frames up to i in the caller's thread, and a push onto a full queue
-// first detects the oldest queued frame.
+// The frames queue up in a core::Stage (blocking when full). Sequential mode
+// (WorkerParams::threaded false, System.sequential) starts no thread: take(i) detects the
+// queued frames up to i in the caller's thread, and a push onto a full queue first detects the
+// oldest queued frame.
 #include <condition_variable>
 #include <cstdint>
-#include <deque>
 #include <exception>
 #include <map>
 #include <memory>
 #include <mutex>
 #include <optional>
 #include <set>
-#include <thread>
+
+#include "lumaslam/core/stage.h"
 
 #include "lumaslam/detect/detector.h"
 #include "lumaslam/detect/detector_params.h"
@@ -85,29 +86,27 @@ class DetectionWorker {
     Detections detections;
   };
 
-  void run();
-  // Takes the oldest queued job, detects it with the lock released, stores its outcome
-  // (unless stopped meanwhile). `lock` holds mutex_ on entry and on return; the queue is not
-  // empty.
-  void processNextJob(std::unique_lock<std::mutex>& lock);
-  Outcome process(const Job& job);
+  static std::unique_ptr<Detector> nonNull(std::unique_ptr<Detector> detector);
+  static WorkerParams validated(WorkerParams params);
+  // The stage's process step, in its thread (or the caller's, sequential).
+  Outcome process(Job& job);
+  // The stage's output: keeps the outcome for take() unless stopped meanwhile.
+  void store(Outcome&& outcome);
+  bool readyLocked(std::int64_t frame_index) const;
 
   std::unique_ptr<Detector> detector_;
   const WorkerParams params_;
 
-  std::mutex mutex_;
-  std::condition_variable work_available_;
-  std::condition_variable space_available_;
+  mutable std::mutex mutex_;
   std::condition_variable result_ready_;
-  std::deque<Job> queue_;
   std::set<std::int64_t> pending_;           // pushed, not yet taken
   std::map<std::int64_t, Outcome> results_;  // ready, not yet taken
   std::optional<std::int64_t> last_pushed_;
   std::int64_t pushed_count_ = 0;
   bool stopping_ = false;
 
-  std::optional<LastFrame> last_frame_;  // the thread that detects only
-  std::thread thread_;  // last member: starts (when threaded) after everything above exists
+  std::optional<LastFrame> last_frame_;  // the stage's process step only
+  core::Stage<Job, Outcome> stage_;      // last: its thread uses everything above
 };
 
 }  // namespace lumaslam::detect
