@@ -3,8 +3,9 @@
 // OpenCV and TBB are not built with TSan, so the synchronisation inside their worker pools is
 // invisible to it and every buffer a parallel loop touches is reported as a race. While an
 // object of this class lives, cv::parallel_for_ and tbb::parallel_for run inline on the
-// calling thread, so TSan sees only our own std::threads (tracking, local mapping, loop
-// closing, detection worker, std::async jobs). Release builds never create one.
+// calling thread, so TSan sees only our own std::threads (tracking and the core::Stage threads
+// of local mapping, loop closing, global BA and detection; the core::startSideJob jobs).
+// Release builds never create one.
 // OpenMP (SuiteSparse CHOLMOD under Ceres) is the third pool: it is capped from outside with
 // OMP_THREAD_LIMIT=1, which the TSan tests set (tests/CMakeLists.txt, make test-tsan).
 #include <tbb/global_control.h>
