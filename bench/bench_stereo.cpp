@@ -21,14 +21,6 @@ namespace {
 
 using namespace lumaslam;
 
-camera::PinholeCamera cameraOf(const io::CameraCalibration& c) {
-  std::array<double, 5> distortion{};
-  for (std::size_t i = 0; i < std::min<std::size_t>(5, c.distortion.size()); ++i)
-    distortion[i] = c.distortion[i];
-  return camera::PinholeCamera(c.fx, c.fy, c.cx, c.cy, {c.resolution.width, c.resolution.height},
-                               distortion);
-}
-
 struct RectifiedPair {
   std::optional<camera::StereoRectifier> rectifier;
   cv::Mat rawLeft, rawRight, left, right;
@@ -43,7 +35,8 @@ const RectifiedPair& eurocPair() {
     const auto calibration = reader->calibration();
     const auto frame = reader->next();
     if (!calibration || !calibration->right || !calibration->T_left_right || !frame) return p;
-    p.rectifier.emplace(cameraOf(calibration->left), cameraOf(*calibration->right),
+    p.rectifier.emplace(camera::PinholeCamera::fromSettings(calibration->left),
+                        camera::PinholeCamera::fromSettings(*calibration->right),
                         *calibration->T_left_right);
     p.rawLeft = frame->image;
     p.rawRight = frame->right;

@@ -196,12 +196,12 @@ TEST(EurocReader, ReadsStereoMicroSequenceWithCalibration) {
   EXPECT_DOUBLE_EQ(calibration->left.fy, 457.296);
   EXPECT_DOUBLE_EQ(calibration->left.cx, 367.215);
   EXPECT_DOUBLE_EQ(calibration->left.cy, 248.375);
-  EXPECT_EQ(calibration->left.resolution, cv::Size(752, 480));
-  EXPECT_EQ(calibration->left.distortion_model, "radial-tangential");
-  ASSERT_EQ(calibration->left.distortion.size(), 4u);
+  EXPECT_EQ(calibration->left.size, (camera::ImageSize{752, 480}));
+  EXPECT_EQ(calibration->left.model, camera::CameraModel::Pinhole);
   EXPECT_DOUBLE_EQ(calibration->left.distortion[0], -0.28340811);
-  EXPECT_DOUBLE_EQ(calibration->left.rate_hz, 20.0);
-  EXPECT_NEAR(calibration->left.T_body_cam.translation().x(), -0.0216401454975, 1e-9);
+  EXPECT_DOUBLE_EQ(calibration->left.distortion[3], 1.76187114e-05);
+  EXPECT_DOUBLE_EQ(calibration->left.distortion[4], 0.0);  // k3: EuRoC lists four
+  EXPECT_DOUBLE_EQ(calibration->left.fps, 20.0);
   ASSERT_TRUE(calibration->right);
   EXPECT_DOUBLE_EQ(calibration->right->fx, 457.587);
   // The VI-sensor's stereo baseline is about 11 cm, mostly along the left camera's x axis.
@@ -254,8 +254,10 @@ TEST(EurocSensorYaml, ReadsFilesWithoutYamlHeader) {
   rest.assign(std::istreambuf_iterator<char>(original), {});
   writeBytes(dir.path() / "sensor.yaml", rest);  // as in the original EuRoC download
   const auto camera = readEurocCameraYaml(dir.path() / "sensor.yaml");
-  EXPECT_DOUBLE_EQ(camera.fx, 457.587);
-  EXPECT_DOUBLE_EQ(camera.cy, 255.238);
+  ASSERT_TRUE(camera.camera);
+  EXPECT_DOUBLE_EQ(camera.camera->fx, 457.587);
+  EXPECT_DOUBLE_EQ(camera.camera->cy, 255.238);
+  EXPECT_EQ(camera.distortion_model, "radial-tangential");
   EXPECT_NEAR(camera.T_body_cam.translation().y(), 0.0453689425024, 1e-12);
   EXPECT_NEAR(camera.T_body_cam.linear().determinant(), 1.0, 1e-12);
 
@@ -265,6 +267,32 @@ TEST(EurocSensorYaml, ReadsFilesWithoutYamlHeader) {
   writeBytes(dir.path() / "short.yaml", "intrinsics: [1, 2, 3]\n");
   EXPECT_ERROR_CONTAINS(readEurocCameraYaml(dir.path() / "short.yaml"),
                         "key 'intrinsics': expected 4 numbers, found 3");
+  const std::string camera_lines = "intrinsics: [400, 400, 320, 240]\nresolution: [640, 480]\n";
+  writeBytes(dir.path() / "three.yaml", camera_lines +
+                                            "distortion_model: radial-tangential\n"
+                                            "distortion_coefficients: [0.1, 0.2, 0.3]\n");
+  EXPECT_ERROR_CONTAINS(readEurocCameraYaml(dir.path() / "three.yaml"),
+                        "key 'distortion_coefficients': expected 4 or 5 numbers");
+}
+
+// A fisheye model (TUM-VI's equidistant) has no camera/ model: the dataset still reads, with
+// its body transform for the ground truth, but offers no calibration hint.
+TEST(EurocSensorYaml, ADistortionModelCameraHasNoModelForGivesNoCamera) {
+  TempDir dir("euroc_yaml_equidistant");
+  writeBytes(dir.path() / "sensor.yaml",
+             "intrinsics: [190.9, 190.9, 254.9, 256.9]\nresolution: [512, 512]\n"
+             "distortion_model: equidistant\n"
+             "distortion_coefficients: [0.003, 0.0007, -0.002, 0.0002]\n");
+  const auto camera = readEurocCameraYaml(dir.path() / "sensor.yaml");
+  EXPECT_FALSE(camera.camera);
+  EXPECT_EQ(camera.distortion_model, "equidistant");
+  EXPECT_TRUE(camera.T_body_cam.isApprox(SE3::Identity()));
+  writeBytes(dir.path() / "none.yaml",
+             "intrinsics: [400, 400, 320, 240]\nresolution: [640, 480]\n"
+             "distortion_model: none\n");
+  const auto undistorted = readEurocCameraYaml(dir.path() / "none.yaml");
+  ASSERT_TRUE(undistorted.camera);
+  EXPECT_FALSE(undistorted.camera->hasDistortion());
 }
 
 TEST(EurocReader, ConvertsBodyGroundTruthToCam0) {
@@ -304,7 +332,9 @@ TEST(KittiReader, ReadsSequence07Excerpt) {
   EXPECT_DOUBLE_EQ(calibration->left.fx, 707.0912);
   EXPECT_DOUBLE_EQ(calibration->left.cx, 601.8873);
   EXPECT_DOUBLE_EQ(calibration->left.cy, 183.1104);
-  EXPECT_EQ(calibration->left.resolution, cv::Size(1226, 370));
+  EXPECT_EQ(calibration->left.size, (camera::ImageSize{1226, 370}));
+  EXPECT_EQ(calibration->left.model, camera::CameraModel::Rectified);
+  EXPECT_DOUBLE_EQ(calibration->left.fps, 10.0);
 
   const auto frame = reader->next();
   ASSERT_TRUE(frame);

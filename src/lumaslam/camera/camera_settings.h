@@ -1,7 +1,9 @@
 #pragma once
 // A camera as the settings file describes it (Camera.*, Camera1.*, Camera2.*, Stereo.*;
 // docs/settings.md): intrinsics, distortion, image size and, for a stereo pair, the second
-// camera and its pose. io::Settings reads them; camera/ builds its models from them.
+// camera and its pose. The one camera description: io::Settings reads it from a settings file,
+// the dataset readers from a dataset's own calibration (io::CalibrationHint); camera/ builds
+// its models from it.
 #include <array>
 #include <optional>
 #include <string_view>

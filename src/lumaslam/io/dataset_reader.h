@@ -10,6 +10,7 @@
 
 #include <opencv2/core.hpp>
 
+#include "lumaslam/camera/camera_settings.h"
 #include "lumaslam/core/pose.h"
 
 namespace lumaslam::io {
@@ -23,19 +24,12 @@ struct FrameData {
   std::filesystem::path image_path;
 };
 
-// A pinhole camera as a dataset describes it (EuRoC sensor.yaml, KITTI calib.txt).
-struct CameraCalibration {
-  cv::Size resolution;  // 0x0 when the dataset does not say
-  double fx = 0.0, fy = 0.0, cx = 0.0, cy = 0.0;
-  std::string distortion_model = "none";  // "radial-tangential", "equidistant", "none"
-  std::vector<double> distortion;         // as listed, e.g. k1 k2 p1 p2
-  SE3 T_body_cam = SE3::Identity();       // EuRoC T_BS; identity where there is no body
-  double rate_hz = 0.0;                   // 0 when unknown
-};
-
+// The cameras a dataset describes (EuRoC sensor.yaml, KITTI calib.txt), in the one camera
+// description the settings use (camera::CameraSettings: model, intrinsics, distortion, image
+// size, frame rate).
 struct CalibrationHint {
-  CameraCalibration left;
-  std::optional<CameraCalibration> right;
+  camera::CameraSettings left;
+  std::optional<camera::CameraSettings> right;
   std::optional<SE3> T_left_right;  // maps right-camera points into the left camera
   double baseline() const { return T_left_right ? T_left_right->translation().norm() : 0.0; }
 };

@@ -64,14 +64,19 @@ std::filesystem::path findOrbSlamCameraGroundTruth(const std::filesystem::path& 
 
 EurocReader::EurocReader(const std::filesystem::path& root, bool stereo, ReaderOptions options)
     : ListedFramesReader(std::move(options)), root_(root), mav0_(findMav0(root)), stereo_(stereo) {
-  calibration_.left = readEurocCameraYaml(mav0_ / "cam0/sensor.yaml");
+  const auto left_camera = readEurocCameraYaml(mav0_ / "cam0/sensor.yaml");
+  if (left_camera.camera) calibration_ = CalibrationHint{*left_camera.camera};
   const auto left = readCameraList(mav0_ / "cam0");
   if (!stereo_) {
     for (const auto& image : left) entries_.push_back({image.timestamp_ns, image.file, {}});
   } else {
-    calibration_.right = readEurocCameraYaml(mav0_ / "cam1/sensor.yaml");
-    calibration_.T_left_right =
-        calibration_.left.T_body_cam.inverse() * calibration_.right->T_body_cam;
+    const auto right_camera = readEurocCameraYaml(mav0_ / "cam1/sensor.yaml");
+    if (calibration_ && right_camera.camera) {
+      calibration_->right = right_camera.camera;
+      calibration_->T_left_right = left_camera.T_body_cam.inverse() * right_camera.T_body_cam;
+    } else {
+      calibration_.reset();
+    }
     std::unordered_map<std::int64_t, std::filesystem::path> right_by_time;
     for (auto& image : readCameraList(mav0_ / "cam1"))
       right_by_time[image.timestamp_ns] = image.file;

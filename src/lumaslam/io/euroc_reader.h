@@ -37,7 +37,7 @@ class EurocReader final : public ListedFramesReader {
   std::filesystem::path root_;
   std::filesystem::path mav0_;
   bool stereo_;
-  CalibrationHint calibration_;
+  std::optional<CalibrationHint> calibration_;  // nullopt: a camera camera/ cannot describe
   std::vector<Entry> entries_;
 };
 

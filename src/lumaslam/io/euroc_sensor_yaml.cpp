@@ -1,5 +1,8 @@
 #include "lumaslam/io/euroc_sensor_yaml.h"
 
+#include <algorithm>
+#include <array>
+
 #include "lumaslam/core/error.h"
 #include "lumaslam/core/settings_file.h"
 #include "lumaslam/io/rotation_projection.h"
@@ -31,27 +34,47 @@ SE3 readTransform(const core::SettingsFile& yaml, std::string_view key) {
   T.translation() = M.topRightCorner<3, 1>();
   return T;
 }
+
+// The coefficients k1 k2 p1 p2 [k3] of a radial-tangential model; nullopt for another model.
+std::optional<std::array<double, 5>> radialTangential(const core::SettingsFile& yaml,
+                                                      const std::string& model) {
+  std::array<double, 5> distortion{};
+  if (model == "none") return distortion;
+  if (model != "radial-tangential") return std::nullopt;
+  const auto values = yaml.get<std::vector<double>>("distortion_coefficients");
+  if (values.size() != 4 && values.size() != 5) {
+    yaml.invalid(
+        "distortion_coefficients",
+        fmt::format("expected 4 or 5 numbers (k1 k2 p1 p2 [k3]), found {}", values.size()));
+  }
+  std::copy(values.begin(), values.end(), distortion.begin());
+  return distortion;
+}
 }  // namespace
 
-CameraCalibration readEurocCameraYaml(const std::filesystem::path& file) {
+EurocCamera readEurocCameraYaml(const std::filesystem::path& file) {
   const auto yaml = core::SettingsFile::open(file);
   const auto model = yaml.get<std::string>("camera_model", "pinhole");
   if (model != "pinhole")
     yaml.invalid("camera_model", fmt::format("'{}' is not supported (only pinhole)", model));
 
-  CameraCalibration camera;
+  EurocCamera result;
+  camera::CameraSettings camera;
   const auto intrinsics = listOfSize(yaml, "intrinsics", 4);
   camera.fx = intrinsics[0];
   camera.fy = intrinsics[1];
   camera.cx = intrinsics[2];
   camera.cy = intrinsics[3];
   const auto resolution = listOfSize(yaml, "resolution", 2);
-  camera.resolution = cv::Size(static_cast<int>(resolution[0]), static_cast<int>(resolution[1]));
-  camera.distortion_model = yaml.get<std::string>("distortion_model", "none");
-  camera.distortion = yaml.get<std::vector<double>>("distortion_coefficients", {});
-  camera.rate_hz = yaml.get<double>("rate_hz", 0.0);
-  if (yaml.has("T_BS")) camera.T_body_cam = readTransform(yaml, "T_BS");
-  return camera;
+  camera.size = {static_cast<int>(resolution[0]), static_cast<int>(resolution[1])};
+  camera.fps = yaml.get<double>("rate_hz", camera.fps);
+  result.distortion_model = yaml.get<std::string>("distortion_model", "none");
+  if (const auto distortion = radialTangential(yaml, result.distortion_model)) {
+    camera.distortion = *distortion;
+    result.camera = camera;
+  }
+  if (yaml.has("T_BS")) result.T_body_cam = readTransform(yaml, "T_BS");
+  return result;
 }
 
 }  // namespace lumaslam::io

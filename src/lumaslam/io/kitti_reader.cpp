@@ -42,8 +42,8 @@ KittiReader::KittiReader(std::filesystem::path sequence_dir, bool stereo, Reader
   }
   // calib.txt has no image size: take it from the first image (one decode).
   const cv::Mat first = cv::imread(imagePath("image_0", 0).string(), cv::IMREAD_GRAYSCALE);
-  calibration_.left.resolution = first.size();
-  if (calibration_.right) calibration_.right->resolution = first.size();
+  calibration_.left.size = {first.cols, first.rows};
+  if (calibration_.right) calibration_.right->size = calibration_.left.size;
   setFrameCount(times_.size(), (sequence_dir_ / "times.txt").string());
 }
 
@@ -70,7 +70,8 @@ CalibrationHint KittiReader::readCalibration(const std::filesystem::path& calib_
   hint.left.fy = (*P0)(1, 1);
   hint.left.cx = (*P0)(0, 2);
   hint.left.cy = (*P0)(1, 2);
-  hint.left.rate_hz = 10.0;
+  hint.left.model = camera::CameraModel::Rectified;  // P0/P1 describe rectified images
+  hint.left.fps = 10.0;
   if (P1) {
     hint.right = hint.left;
     hint.right->fx = (*P1)(0, 0);

@@ -8,20 +8,12 @@
 namespace lumaslam::track {
 namespace {
 
-camera::PinholeCamera cameraOf(const io::CameraCalibration& c) {
-  std::array<double, 5> distortion{};
-  for (std::size_t i = 0; i < std::min<std::size_t>(5, c.distortion.size()); ++i) {
-    distortion[i] = c.distortion[i];
-  }
-  return camera::PinholeCamera(c.fx, c.fy, c.cx, c.cy, {c.resolution.width, c.resolution.height},
-                               distortion);
-}
-
 camera::StereoRectifier rectifierOf(const io::CalibrationHint& calibration) {
   if (!calibration.right || !calibration.T_left_right) {
     fail("stereo match count: the dataset has no stereo calibration (right camera, T_left_right)");
   }
-  return camera::StereoRectifier(cameraOf(calibration.left), cameraOf(*calibration.right),
+  return camera::StereoRectifier(camera::PinholeCamera::fromSettings(calibration.left),
+                                 camera::PinholeCamera::fromSettings(*calibration.right),
                                  *calibration.T_left_right);
 }
 
