@@ -66,7 +66,7 @@ TEST(CliRunDetector, RemovesTheBoxesOfASyntheticWalkingDataset) {
 // so two runs with YOLO in the loop write the same bytes.
 TEST(CliRunDetector, SequentialRunsWithYoloAreByteIdentical) {
   const auto model = lumaslam::test::modelsDir() / "yolov5n-320.onnx";
-  if (!std::filesystem::exists(model)) GTEST_SKIP() << "no YOLO model at " << model;
+  ASSERT_TRUE(std::filesystem::exists(model)) << "no YOLO model at " << model;
   TempDir dir("cli_run_detector_yolo_sequential");
   const auto data = dir.path() / "data";
   const auto synth =
