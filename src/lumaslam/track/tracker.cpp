@@ -61,6 +61,7 @@ TrackingOutcome Tracker::track(Frame frame) {
   std::lock_guard map_lock(map_->updateMutex());
   current_ = std::move(frame);
   rigidity_ = {};
+  rigidity_ms_ = 0.0;
   dynamic_memory_.beginFrame(current_.index, current_.dynamic_boxes);
   TrackingOutcome outcome;
   const TrackingState previous = state_;
@@ -733,7 +734,10 @@ void Tracker::joinMatchesThatFit(const std::vector<bool>& trusted, int trusted_c
 void Tracker::testRigidity() {
   rigidity_ = {};
   if (!motion_evidence_.enabled() || !params_.motion_evidence.rigidity || camera_.bf <= 0.0) return;
+  const auto start = std::chrono::steady_clock::now();
   rigidity_ = rigidConsensus(current_, camera_.intrinsics(), params_.motion_evidence.rigid);
+  rigidity_ms_ +=
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
 
 std::vector<bool> Tracker::notRigidlyBroken() const {
@@ -778,6 +782,7 @@ void Tracker::excludeMovingPoints(TrackingOutcome& outcome) {
   }
   if (pose_used_one) optimizeCurrentPose();
   outcome.motion_evidence_ms =
+      rigidity_ms_ +
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
 

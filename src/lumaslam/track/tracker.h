@@ -96,7 +96,7 @@ struct TrackingOutcome {
   int moving_features = 0;                 // features the motion test found moving
   std::vector<cv::Point2f> moving_points;  // where they are (pixels of the tracked image)
   bool keyframe_waits_for_mapper = false;  // a keyframe was due, the mapper was busy
-  double motion_evidence_ms = 0.0;         // the motion test's time
+  double motion_evidence_ms = 0.0;         // the motion test's time, with its rigid consensus tests
 };
 
 class Tracker {
@@ -198,7 +198,8 @@ class Tracker {
   map::MapId active_map_ = 0;         // the map new keyframes start in (follows merges)
   DynamicPointMemory dynamic_memory_;
   MotionEvidence motion_evidence_;
-  RigidVerdict rigidity_;  // of current_'s matches as they are now (rigid_consensus.h)
+  RigidVerdict rigidity_;     // of current_'s matches as they are now (rigid_consensus.h)
+  double rigidity_ms_ = 0.0;  // this frame's rigid consensus tests, part of motion_evidence_ms
   bool localization_only_ = false;
   TrajectoryRecorder recorder_;
   std::unique_ptr<MonocularInitializer> monocular_initializer_;
