@@ -1,6 +1,7 @@
 #pragma once
 // `lumaslam run --viewer`: the live viewer beside the frame loop (docs/viewer.md).
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -18,10 +19,13 @@ namespace lumaslam::cli {
 std::unique_ptr<viewer::Viewer> startViewer(const RunOptions& options, const Pipeline& system);
 
 // The tracking thread's time handing one frame over (ms): wall time, which on a loaded machine
-// includes the time the thread waited for a core, and the thread's own CPU time, the work.
+// includes the time the thread waited for a core, the thread's own CPU time (the work), and the
+// time it was runnable but waiting for a core (the kernel's schedstat run_delay; nullopt where
+// the kernel does not report it).
 struct HandoverTime {
   double wall_ms = 0.0;
   double cpu_ms = 0.0;
+  std::optional<double> runqueue_ms;
 };
 
 // Hands one tracked frame to the viewer; `frame`'s images move into the view.
@@ -32,7 +36,8 @@ HandoverTime publishFrame(viewer::Viewer& viewer, io::FrameData& frame, const Fr
 void keepServing(const viewer::Viewer& viewer, const StopOnSignal& stop);
 
 // summary.json's "viewer": address, frames handed over and shown, tracking-thread cost
-// (`handover_ms` wall, `handover_cpu_ms` thread CPU time: median / p99 / max).
+// (`handover_ms` wall, `handover_cpu_ms` thread CPU time, `handover_runqueue_ms` time waiting for
+// a core: median / p99 / max).
 nlohmann::json viewerSummary(const viewer::Viewer& viewer,
                              const std::vector<HandoverTime>& handovers);
 
