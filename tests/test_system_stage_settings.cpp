@@ -222,8 +222,10 @@ test::RunResult runWith(const std::string& preset, int frames, const std::string
 }
 
 // Effects on a run (sequential, deterministic: the mapper is always idle, so
-// Tracking.maxFramesBetweenKeyframes, which applies to a busy mapper, has none): keyframes no
-// sooner than 20 frames apart, and local bundle adjustment off changes the poses.
+// Tracking.maxFramesBetweenKeyframes, which applies to a busy mapper, has none): fewer
+// keyframes when they come no sooner than 20 frames apart unless tracking is weak (the close
+// points rule still makes some sooner, as in ORB-SLAM3: docs/settings.md), and local bundle
+// adjustment off changes the poses.
 TEST(StageSettings, ChangedKeysChangeWhatARunDoes) {
   const auto with = [](const std::string& extra) { return runWith("xyz-rgbd", 80, extra); };
   const auto defaults = with("");
@@ -231,7 +233,6 @@ TEST(StageSettings, ChangedKeysChangeWhatARunDoes) {
   const auto no_ba = with("LocalMapping.bundleAdjustment: false\n");
   EXPECT_EQ(defaults.tracked, 80U);
   EXPECT_EQ(spaced.tracked, 80U);
-  EXPECT_LE(spaced.keyframes, 80U / 20U + 1U);
   EXPECT_LT(spaced.keyframes, defaults.keyframes);
   EXPECT_NE(no_ba.report.ate.stats.rmse, defaults.report.ate.stats.rmse);
 }

@@ -840,7 +840,10 @@ Tracker::KeyFrameDecision Tracker::needNewKeyFrame() const {
     const float z = current_.features->depth[i];
     if (z <= 0 || z >= camera_.close_depth) continue;
     if (current_.features->isMoving(i)) continue;  // no map point wanted there
-    if (current_.points[i] && !current_.outliers[i]) {
+    // Map points only, as ORB-SLAM3 counts them after dropping the frame's visual-odometry
+    // points: those are not in the map, and counted they kept need_close from ever firing.
+    const auto& point = current_.points[i];
+    if (point && !current_.outliers[i] && point->observationCount() > 0) {
       ++tracked_close;
     } else {
       ++untracked_close;
