@@ -46,6 +46,9 @@ targets=(lumaslam_cli test_system_rgbd test_system_stereo test_system_mono test_
          test_core_gray_image test_system_real_rgbd test_system_tracking_steps
          test_system_motion_evidence test_api_colour_order)
 
+# apply_mutation SUBSTITUTION FILE: edits FILE once; fails when the substitution matches nothing.
+apply_mutation() { perl -0pi -e "\$n = ($1); END { exit(\$n ? 0 : 3) }" "$2"; }
+
 # Applies each substitution to a copy of its file; fails naming the ones that match nothing.
 check_mutations_apply() {
   local entry name file substitution copy stale=0
@@ -58,7 +61,7 @@ check_mutations_apply() {
       continue
     fi
     cp "$root/$file" "$copy"
-    if ! perl -0pi -e "\$n = ($substitution); END { exit(\$n ? 0 : 3) }" "$copy"; then
+    if ! apply_mutation "$substitution" "$copy"; then
       echo "test-strength: mutation $name matched nothing in $file" >&2
       stale=$((stale + 1))
     fi
@@ -88,12 +91,12 @@ if [[ -n $in_place ]]; then
     git -C "$root" diff --quiet HEAD -- "$file" ||
       { echo "test-strength: $file has uncommitted changes; commit or stash them" >&2; exit 1; }
   done
-elif [[ ! -d $tree ]]; then
-  git -C "$root" worktree add --detach "$tree" HEAD >/dev/null
 else
-  git -C "$tree" checkout --detach -q "$(git -C "$root" rev-parse HEAD)"
-fi
-if [[ -z $in_place ]]; then
+  if [[ ! -d $tree ]]; then
+    git -C "$root" worktree add --detach "$tree" HEAD >/dev/null
+  else
+    git -C "$tree" checkout --detach -q "$(git -C "$root" rev-parse HEAD)"
+  fi
   cmake -S "$tree" -B "$build" -DCMAKE_BUILD_TYPE=Release -DLUMASLAM_SHARED_DIR="$shared" \
     ${CMAKE_FLAGS:-} >/dev/null
 fi
@@ -126,7 +129,7 @@ for entry in "${mutations[@]}"; do
   wanted "$name" || continue
   echo "mutation $name ($file)" >&2
   mutated=$file
-  perl -0pi -e "\$n = ($substitution); END { exit(\$n ? 0 : 3) }" "$tree/$file" || {
+  apply_mutation "$substitution" "$tree/$file" || {
     echo "test-strength: mutation $name matched nothing in $file" >&2
     exit 1
   }
