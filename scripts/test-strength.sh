@@ -87,7 +87,7 @@ wanted() {
 mkdir -p "$strength_dir"
 if [[ -n $in_place ]]; then
   for entry in "${mutations[@]}"; do
-    file=${entry#*|}; file=${file%%|*}
+    IFS='|' read -r name file substitution <<<"$entry"
     git -C "$root" diff --quiet HEAD -- "$file" ||
       { echo "test-strength: $file has uncommitted changes; commit or stash them" >&2; exit 1; }
   done
