@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include "error_of.h"
 #include "lumaslam/core/error.h"
 #include "lumaslam/detect/detector_spec.h"
 
@@ -7,6 +8,7 @@ namespace {
 
 using namespace lumaslam;
 using detect::detectorParamsFor;
+using test::errorOf;
 
 core::SettingsFile settings(const std::string& text) {
   return core::SettingsFile::fromString(text, "run.yaml");
@@ -51,13 +53,9 @@ TEST(DetectorSpec, ASpecReplacesTheSourceAndKeepsTheTuning) {
 
 TEST(DetectorSpec, MalformedSpecsNameTheSpec) {
   for (const std::string spec : {"magic", "yolo", "yolo:", "boxes", "box:f.txt", ""}) {
-    try {
-      detectorParamsFor(nullptr, spec);
-      ADD_FAILURE() << "no error for '" << spec << "'";
-    } catch (const Error& e) {
-      EXPECT_NE(std::string(e.what()).find("--detector '" + spec + "'"), std::string::npos)
-          << e.what();
-    }
+    const std::string message = errorOf([&] { detectorParamsFor(nullptr, spec); });
+    EXPECT_NE(message.find("--detector '" + spec + "'"), std::string::npos)
+        << "for '" << spec << "': " << message;
   }
 }
 

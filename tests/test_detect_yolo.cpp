@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 #include <opencv2/imgcodecs.hpp>
 
+#include "error_of.h"
 #include "lumaslam/core/error.h"
 #include "lumaslam/detect/box_labels.h"
 #include "lumaslam/detect/detection_eval.h"
@@ -18,6 +19,7 @@ namespace lumaslam::detect {
 namespace {
 
 using test::dataDir;
+using test::errorOf;
 using test::modelsDir;
 
 DetectorParams yoloParams(const std::string& model_file) {
@@ -170,25 +172,19 @@ TEST(YoloDetector, MissingOrGarbageModelIsAClearError) {
   test::TempDir dir("detect_models");
   auto params = yoloParams("yolov5n.onnx");
   params.model = dir.path() / "absent.onnx";
-  try {
-    YoloDetector detector(params);
-    FAIL() << "no error for a missing model";
-  } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find("absent.onnx"), std::string::npos) << e.what();
-    EXPECT_NE(std::string(e.what()).find("not found"), std::string::npos) << e.what();
-  }
+  // A missing model is an error.
+  const std::string missing = errorOf([&] { YoloDetector detector(params); });
+  EXPECT_NE(missing.find("absent.onnx"), std::string::npos) << missing;
+  EXPECT_NE(missing.find("not found"), std::string::npos) << missing;
 
   params.model = dir.path() / "x.onnx";
   {
     std::ofstream garbage(params.model, std::ios::binary);
     for (int i = 0; i < 4096; ++i) garbage.put(static_cast<char>((i * 7919) % 251));
   }
-  try {
-    YoloDetector detector(params);
-    FAIL() << "no error for a garbage model";
-  } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find("x.onnx"), std::string::npos) << e.what();
-  }
+  // A garbage model is an error.
+  const std::string garbled = errorOf([&] { YoloDetector detector(params); });
+  EXPECT_NE(garbled.find("x.onnx"), std::string::npos) << garbled;
 }
 
 TEST(YoloDetector, NamesThatDoNotFitTheModelAreAClearError) {
@@ -200,12 +196,9 @@ TEST(YoloDetector, NamesThatDoNotFitTheModelAreAClearError) {
 
   params.names = modelsDir() / "coco80.names";
   params.classes = {"unicorn"};
-  try {
-    YoloDetector detector(params);
-    FAIL() << "no error for an unknown class";
-  } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find("unicorn"), std::string::npos) << e.what();
-  }
+  // An unknown class is an error.
+  const std::string message = errorOf([&] { YoloDetector detector(params); });
+  EXPECT_NE(message.find("unicorn"), std::string::npos) << message;
 }
 
 }  // namespace

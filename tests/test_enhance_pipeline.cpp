@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 #include <opencv2/imgproc.hpp>
 
+#include "error_of.h"
 #include "lumaslam/core/error.h"
 #include "lumaslam/core/settings_file.h"
 #include "lumaslam/enhance/adaptive_limit.h"
@@ -226,11 +227,8 @@ TEST(EnhanceEnhancer, OddInputsGiveAnErrorOrADefinedResult) {
   EXPECT_THROW(enhancer.enhance(cv::Mat(8, 8, CV_16UC1, cv::Scalar(1000))), Error);
   EXPECT_THROW(enhancer.enhance(cv::Mat(8, 8, CV_32FC1, cv::Scalar(0.5))), Error);
   EXPECT_THROW(enhancer.enhance(cv::Mat(8, 8, CV_8UC2, cv::Scalar(1, 2))), Error);
-  try {
-    enhancer.enhance(cv::Mat(8, 8, CV_16UC1));
-  } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find("8-bit"), std::string::npos) << e.what();
-  }
+  const std::string message = test::errorOf([&] { enhancer.enhance(cv::Mat(8, 8, CV_16UC1)); });
+  EXPECT_NE(message.find("8-bit"), std::string::npos) << message;
   for (const auto& preset : EnhancerParams::presetNames()) {
     Enhancer each(EnhancerParams::forPreset(preset));
     for (const cv::Mat& image :
@@ -313,14 +311,10 @@ TEST(EnhanceSettings, RealsReadBackBitForBit) {
 
 TEST(EnhanceSettings, WrongValuesNameTheFileAndKey) {
   const auto expectError = [](const std::string& yaml, const std::string& key) {
-    try {
-      EnhancerParams::fromSettings(core::SettingsFile::fromString(yaml, "my.yaml"));
-      ADD_FAILURE() << "no error for " << yaml;
-    } catch (const Error& e) {
-      const std::string message = e.what();
-      EXPECT_NE(message.find("my.yaml"), std::string::npos) << message;
-      EXPECT_NE(message.find(key), std::string::npos) << message;
-    }
+    const std::string message = test::errorOf(
+        [&] { EnhancerParams::fromSettings(core::SettingsFile::fromString(yaml, "my.yaml")); });
+    EXPECT_NE(message.find("my.yaml"), std::string::npos) << "for " << yaml << ": " << message;
+    EXPECT_NE(message.find(key), std::string::npos) << "for " << yaml << ": " << message;
   };
   expectError("Enhancement.preset: \"shiny\"\n", "Enhancement.preset");
   expectError("Enhancement.stereo: \"both\"\n", "Enhancement.stereo");

@@ -8,6 +8,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "error_of.h"
 #include "lumaslam/core/error.h"
 #include "lumaslam/feature/descriptor_matcher.h"
 #include "lumaslam/feature/orb_extractor.h"
@@ -18,6 +19,7 @@
 namespace lumaslam::feature {
 namespace {
 
+using test::errorOf;
 using test::eurocFrame;
 using test::kittiFrame;
 using test::loadGray;
@@ -291,13 +293,9 @@ TEST(Matchers, RejectMalformedDescriptors) {
   EXPECT_THROW(matchBruteForce(good, cv::Mat(10, 16, CV_8UC1)), Error);
   const std::vector<cv::KeyPoint> keypoints(5, cv::KeyPoint(10, 10, 31));
   const FeatureGrid grid(keypoints, cv::Size(100, 100));
-  try {
-    matchInWindow(keypoints, good, grid, good, 5.0f);
-    ADD_FAILURE() << "expected an Error for 10 descriptors and 5 keypoints";
-  } catch (const Error& error) {
-    EXPECT_NE(std::string(error.what()).find("expected 5 descriptor rows"), std::string::npos)
-        << error.what();
-  }
+  // 10 descriptors for 5 keypoints are an error.
+  const std::string message = errorOf([&] { matchInWindow(keypoints, good, grid, good, 5.0f); });
+  EXPECT_NE(message.find("expected 5 descriptor rows"), std::string::npos) << message;
   EXPECT_THROW(descriptorAt(good, 10), Error);
 }
 

@@ -9,6 +9,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "error_of.h"
 #include "lumaslam/core/error.h"
 #include "lumaslam/feature/grid_coverage.h"
 #include "lumaslam/feature/grid_fast.h"
@@ -21,6 +22,7 @@
 namespace lumaslam::feature {
 namespace {
 
+using test::errorOf;
 using test::eurocFrame;
 using test::kittiFrame;
 using test::loadGray;
@@ -330,12 +332,9 @@ TEST(OrbExtractor, FlatImageGivesNoFeaturesWithoutFailing) {
 }
 
 void expectErrorMentioning(const std::function<void()>& action, const std::string& text) {
-  try {
-    action();
-    ADD_FAILURE() << "expected lumaslam::Error mentioning '" << text << "'";
-  } catch (const Error& error) {
-    EXPECT_NE(std::string(error.what()).find(text), std::string::npos) << error.what();
-  }
+  const std::string message = errorOf(action);
+  EXPECT_NE(message.find(text), std::string::npos)
+      << "expected lumaslam::Error mentioning '" << text << "': " << message;
 }
 
 TEST(OrbExtractor, RejectsBadImagesAndMasks) {

@@ -149,13 +149,10 @@ TEST_F(TumImagesTest, CorruptImageIsAnErrorOrASkip) {
   options.max_frames = 5;
   {
     const auto reader = openDataset(spec(), options);
-    std::string message;
-    try {
+    const std::string message = errorOf([&] {
       while (reader->next()) {
       }
-    } catch (const Error& e) {
-      message = e.what();
-    }
+    });
     EXPECT_NE(message.find(corrupt.string() + ": cannot decode image"), std::string::npos)
         << message;
   }

@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include "error_of.h"
 #include "loop_test_frames.h"
 #include "lumaslam/core/error.h"
 #include "lumaslam/loop/place_recognition.h"
@@ -68,12 +69,9 @@ TEST(LoopPlaceRecognition, FollowsTheMapsKeyFrames) {
 TEST(LoopPlaceRecognition, BadVocabularyFilesAreErrorsNamingThem) {
   const test::TempDir dir("place_recognition");
   const auto missing = dir.path() / "missing.bin";
-  try {
-    loop::PlaceRecognition::fromFile(missing);
-    FAIL() << "no error for a missing file";
-  } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find("missing.bin"), std::string::npos) << e.what();
-  }
+  // A missing file is an error.
+  const std::string message = test::errorOf([&] { loop::PlaceRecognition::fromFile(missing); });
+  EXPECT_NE(message.find("missing.bin"), std::string::npos) << message;
   const auto garbage = dir.path() / "garbage.txt";
   std::ofstream(garbage) << "not a vocabulary\n";
   EXPECT_THROW(loop::PlaceRecognition::fromFile(garbage), Error);

@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include "error_of.h"
 #include "loop_test_frames.h"
 #include "lumaslam/core/error.h"
 #include "lumaslam/loop/vocabulary.h"
@@ -20,6 +21,7 @@ using namespace lumaslam;
 using loop::BowVector;
 using loop::FeatureVector;
 using loop::Vocabulary;
+using test::errorOf;
 
 constexpr int kTrainFrames = 12;
 
@@ -54,14 +56,9 @@ void writeLines(const std::filesystem::path& file, const std::vector<std::string
 // Expects `load(file)` to throw an Error whose message contains every one of `parts`.
 template <typename Load>
 void expectError(Load&& load, const std::vector<std::string>& parts) {
-  try {
-    load();
-    ADD_FAILURE() << "no Error thrown; expected one mentioning " << parts.front();
-  } catch (const Error& e) {
-    for (const auto& part : parts) {
-      EXPECT_NE(std::string(e.what()).find(part), std::string::npos)
-          << e.what() << " lacks '" << part << "'";
-    }
+  const std::string message = errorOf(load);
+  for (const auto& part : parts) {
+    EXPECT_NE(message.find(part), std::string::npos) << message << " lacks '" << part << "'";
   }
 }
 
@@ -205,13 +202,12 @@ TEST(LoopVocabulary, AFailedSaveIsAnErrorAndLeavesNoPartialFile) {
   const auto file = dir.path() / "vocab.bin";
   std::filesystem::create_directories(file / "in_the_way");
   for (const bool text : {false, true}) {
-    try {
+    // Saving over a folder throws.
+    const std::string message = errorOf([&] {
       text ? loop::saveDbow2Text(trainedVocabulary(), file)
            : loop::saveVocabulary(trainedVocabulary(), file);
-      FAIL() << "saving over a folder did not throw";
-    } catch (const Error& e) {
-      EXPECT_NE(std::string(e.what()).find("vocab.bin"), std::string::npos) << e.what();
-    }
+    });
+    EXPECT_NE(message.find("vocab.bin"), std::string::npos) << "text " << text << ": " << message;
     EXPECT_TRUE(std::filesystem::is_directory(file / "in_the_way"));
     EXPECT_FALSE(std::filesystem::exists(dir.path() / "vocab.bin.partial"));
   }

@@ -8,6 +8,7 @@
 #include <iterator>
 #include <string>
 
+#include "error_of.h"
 #include "lumaslam/core/error.h"
 #include "lumaslam/map/map_file.h"
 
@@ -19,14 +20,9 @@ const std::filesystem::path kRegressions =
 
 void expectMapInfoError(const std::filesystem::path& file, const std::string& problem) {
   ASSERT_TRUE(std::filesystem::exists(file)) << file;
-  try {
-    map::readMapFileInfo(file);
-    FAIL() << "no error for " << file;
-  } catch (const Error& e) {
-    const std::string message = e.what();
-    EXPECT_NE(message.find(file.string()), std::string::npos) << message;
-    EXPECT_NE(message.find(problem), std::string::npos) << message;
-  }
+  const std::string message = test::errorOf([&] { map::readMapFileInfo(file); });
+  EXPECT_NE(message.find(file.string()), std::string::npos) << "for " << file << ": " << message;
+  EXPECT_NE(message.find(problem), std::string::npos) << "for " << file << ": " << message;
 }
 
 TEST(MapFileCorrupt, LengthBeyondTheBytesLeftIsAnError) {

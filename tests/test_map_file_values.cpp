@@ -10,6 +10,7 @@
 #include <memory>
 #include <string>
 
+#include "error_of.h"
 #include "lumaslam/core/error.h"
 #include "lumaslam/feature/scale_levels.h"
 #include "lumaslam/map/keyframe.h"
@@ -82,14 +83,10 @@ void expectRefused(const std::function<void(MapParts&)>& change, const std::stri
   change(parts);
   const auto file = saveMap(parts, dir.path() / "bad.map");
   const auto refused = [&](const std::function<void()>& read) {
-    try {
-      read();
-      ADD_FAILURE() << "no error; expected: " << problem;
-    } catch (const Error& e) {
-      const std::string message = e.what();
-      EXPECT_NE(message.find(file.string()), std::string::npos) << message;
-      EXPECT_NE(message.find(problem), std::string::npos) << message;
-    }
+    const std::string message = test::errorOf(read);
+    EXPECT_NE(message.find(file.string()), std::string::npos) << message;
+    EXPECT_NE(message.find(problem), std::string::npos)
+        << "expected: " << problem << "; " << message;
   };
   refused([&] { map::readMapFileInfo(file); });
   map::Map map;

@@ -7,12 +7,14 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "error_of.h"
 #include "lumaslam/core/error.h"
 #include "lumaslam/synth/dataset_writer.h"
 #include "lumaslam/synth/perturb.h"
 #include "test_paths.h"
 
 using namespace lumaslam::synth;
+using lumaslam::test::errorOf;
 namespace fs = std::filesystem;
 
 namespace {
@@ -113,12 +115,9 @@ TEST(SynthPerturb, EurocDatasetBothCamerasAndBadInput) {
   EXPECT_EQ(perturbDataset(in, out, PerturbModel::Flicker, 4, 1), 4);
   EXPECT_EQ(readBytes(in / "mav0/state_groundtruth_estimate0/data.csv"),
             readBytes(out / "mav0/state_groundtruth_estimate0/data.csv"));
-  try {
-    perturbDataset(dir.path() / "missing", out, PerturbModel::Dark, 1, 1);
-    FAIL() << "expected an Error";
-  } catch (const lumaslam::Error& e) {
-    EXPECT_NE(std::string(e.what()).find("missing"), std::string::npos);
-  }
+  const std::string missing =
+      errorOf([&] { perturbDataset(dir.path() / "missing", out, PerturbModel::Dark, 1, 1); });
+  EXPECT_NE(missing.find("missing"), std::string::npos);
   fs::create_directories(dir.path() / "plain");
   EXPECT_THROW(perturbDataset(dir.path() / "plain", out, PerturbModel::Dark, 1, 1),
                lumaslam::Error);
@@ -127,12 +126,9 @@ TEST(SynthPerturb, EurocDatasetBothCamerasAndBadInput) {
     std::ofstream(entry.path(), std::ios::trunc) << "not a png";
     break;
   }
-  try {
-    perturbDataset(in, dir.path() / "out2", PerturbModel::Dark, 1, 1);
-    FAIL() << "expected an Error";
-  } catch (const lumaslam::Error& e) {
-    EXPECT_NE(std::string(e.what()).find("cam0"), std::string::npos) << e.what();
-  }
+  const std::string message =
+      errorOf([&] { perturbDataset(in, dir.path() / "out2", PerturbModel::Dark, 1, 1); });
+  EXPECT_NE(message.find("cam0"), std::string::npos) << message;
 }
 
 // A perturb that fails half way (one corrupt image) leaves no half-perturbed dataset: the

@@ -4,10 +4,12 @@
 #include <opencv2/features2d.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "error_of.h"
 #include "lumaslam/core/error.h"
 #include "lumaslam/synth/sequence.h"
 
 using namespace lumaslam::synth;
+using lumaslam::test::errorOf;
 
 namespace {
 
@@ -143,20 +145,14 @@ TEST(SynthRender, StereoRigHasBaselineAndRightImage) {
 
 TEST(SynthRender, BadInputGivesClearErrors) {
   EXPECT_THROW(findPreset("no-such-preset"), lumaslam::Error);
-  try {
-    findPreset("no-such-preset");
-  } catch (const lumaslam::Error& e) {
-    EXPECT_NE(std::string(e.what()).find("no-such-preset"), std::string::npos);
-    EXPECT_NE(std::string(e.what()).find("walking-xyz-rgbd"), std::string::npos);
-  }
+  const std::string unknown = errorOf([&] { findPreset("no-such-preset"); });
+  EXPECT_NE(unknown.find("no-such-preset"), std::string::npos);
+  EXPECT_NE(unknown.find("walking-xyz-rgbd"), std::string::npos);
   SynthOptions options;
   options.texture_images = {"/nonexistent/poster.png"};
-  try {
-    SequenceRenderer(findPreset("xyz-rgbd"), 10, 1, options);
-    FAIL() << "expected an Error";
-  } catch (const lumaslam::Error& e) {
-    EXPECT_NE(std::string(e.what()).find("/nonexistent/poster.png"), std::string::npos);
-  }
+  const std::string no_poster =
+      errorOf([&] { SequenceRenderer(findPreset("xyz-rgbd"), 10, 1, options); });
+  EXPECT_NE(no_poster.find("/nonexistent/poster.png"), std::string::npos);
   EXPECT_THROW(SequenceRenderer(findPreset("xyz-rgbd"), 0, 1), lumaslam::Error);
   const SequenceRenderer sequence(findPreset("xyz-rgbd"), 10, 1);
   EXPECT_THROW(sequence.render(10), lumaslam::Error);

@@ -2,6 +2,7 @@
 // ground-truth boxes on the synthetic walking sequences; detector errors at construction.
 #include <gtest/gtest.h>
 
+#include "error_of.h"
 #include "lumaslam/core/error.h"
 #include "test_paths.h"
 #include "test_system_dynamic.h"
@@ -94,12 +95,7 @@ TEST(SystemDynamic, BadDetectorSpecsFailAtConstruction) {
   const auto message = [&](const std::string& spec) {
     PipelineOptions options;
     options.detector = spec;
-    try {
-      Pipeline system(settings, options);
-    } catch (const Error& e) {
-      return std::string(e.what());
-    }
-    return std::string("no error");
+    return test::errorOf([&] { Pipeline system(settings, options); });
   };
   EXPECT_NE(message("magic").find("--detector 'magic'"), std::string::npos) << message("magic");
   EXPECT_NE(message("boxes:").find("expected yolo:MODEL.onnx"), std::string::npos);

@@ -15,6 +15,7 @@
 
 #include <gtest/gtest.h>
 
+#include "error_of.h"
 #include "lumaslam/core/error.h"
 #include "test_system_run.h"
 
@@ -245,12 +246,10 @@ TEST(SystemRelocalization, MissingVocabularyIsAnErrorNamingTheFile) {
   PipelineOptions options;
   options.enhance_preset = "off";
   options.vocabulary = "/nonexistent/vocab.bin";
-  try {
-    Pipeline system(test::presetSettings(sequence(Sensor::Rgbd)), options);
-    FAIL() << "no error for a missing vocabulary";
-  } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find("/nonexistent/vocab.bin"), std::string::npos) << e.what();
-  }
+  // A missing vocabulary is an error.
+  const std::string message = test::errorOf(
+      [&] { Pipeline system(test::presetSettings(sequence(Sensor::Rgbd)), options); });
+  EXPECT_NE(message.find("/nonexistent/vocab.bin"), std::string::npos) << message;
 }
 
 }  // namespace

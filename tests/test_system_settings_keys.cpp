@@ -8,6 +8,7 @@
 
 #include <gtest/gtest.h>
 
+#include "error_of.h"
 #include "lumaslam/core/error.h"
 #include "lumaslam/core/settings_file.h"
 #include "test_system_run.h"
@@ -49,14 +50,9 @@ TEST(SettingsKeys, StrictSettingsMakeATypoAnErrorNamingTheKeyAndTheFix) {
   PipelineOptions options;
   options.sequential = true;
   options.strict_settings = true;
-  try {
-    const Pipeline system(settings, options);
-    FAIL() << "no error for Enhancement.presett";
-  } catch (const Error& e) {
-    const std::string message = e.what();
-    EXPECT_NE(message.find("Enhancement.presett"), std::string::npos) << message;
-    EXPECT_NE(message.find("did you mean 'Enhancement.preset'"), std::string::npos) << message;
-  }
+  const std::string message = test::errorOf([&] { const Pipeline system(settings, options); });
+  EXPECT_NE(message.find("Enhancement.presett"), std::string::npos) << message;
+  EXPECT_NE(message.find("did you mean 'Enhancement.preset'"), std::string::npos) << message;
 }
 
 TEST(SettingsKeys, ShippedConfigsAndGeneratedSettingsHaveNoUnknownKey) {

@@ -8,6 +8,7 @@
 #include <regex>
 #include <string>
 
+#include "error_of.h"
 #include "lumaslam/core/error.h"
 #include "lumaslam/core/settings_file.h"
 #include "lumaslam/pipeline_params.h"
@@ -123,16 +124,12 @@ TEST(StageSettings, AValueOutOfRangeIsAnErrorNamingFileAndKey) {
       {"Initializer.minMatches: 5\n", "must be >= 8, found 5"},
   };
   for (const auto& [line, why] : cases) {
-    try {
-      (void)stageParamsOf(settingsOf("xyz-rgbd", line));
-      ADD_FAILURE() << "no error for " << line;
-    } catch (const Error& e) {
-      const std::string message = e.what();
-      const std::string key = line.substr(0, line.find(':'));
-      EXPECT_NE(message.find("xyz-rgbd.yaml"), std::string::npos) << message;
-      EXPECT_NE(message.find(key), std::string::npos) << message;
-      EXPECT_NE(message.find(why), std::string::npos) << message;
-    }
+    const std::string message =
+        test::errorOf([&] { (void)stageParamsOf(settingsOf("xyz-rgbd", line)); });
+    const std::string key = line.substr(0, line.find(':'));
+    EXPECT_NE(message.find("xyz-rgbd.yaml"), std::string::npos) << "for " << line << message;
+    EXPECT_NE(message.find(key), std::string::npos) << "for " << line << message;
+    EXPECT_NE(message.find(why), std::string::npos) << "for " << line << message;
   }
 }
 

@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
 
+#include "error_of.h"
 #include "lumaslam/viewer/frame_mailbox.h"
 #include "lumaslam/viewer/viewer.h"
 
@@ -16,6 +17,7 @@
 
 namespace {
 
+using lumaslam::test::errorOf;
 using lumaslam::viewer::FrameMailbox;
 using lumaslam::viewer::FrameView;
 using lumaslam::viewer::Viewer;
@@ -286,13 +288,10 @@ TEST(ViewerStart, APortInUseIsAClearError) {
   options.port = 0;
   const Viewer first(options, map);
   options.port = first.port();
-  try {
-    const Viewer second(options, map);
-    FAIL() << "a second viewer on port " << options.port;
-  } catch (const std::exception& e) {
-    EXPECT_NE(std::string(e.what()).find(std::to_string(options.port)), std::string::npos)
-        << e.what();
-  }
+  // A second viewer on the same port is an error naming the port.
+  const std::string message = errorOf([&] { const Viewer second(options, map); });
+  EXPECT_NE(message.find(std::to_string(options.port)), std::string::npos)
+      << "a second viewer on port " << options.port << ": " << message;
 }
 
 }  // namespace
