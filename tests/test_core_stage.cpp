@@ -6,6 +6,7 @@
 #include <chrono>
 #include <future>
 #include <mutex>
+#include <string>
 #include <thread>
 #include <vector>
 
@@ -53,34 +54,46 @@ TEST(CoreStage, ThreadedStageProcessesInItsOwnThread) {
   EXPECT_FALSE(in_caller_thread);
 }
 
-// Detection's queue: a full queue makes the producer wait, and nothing is dropped.
+// Detection's queue: a full queue makes the producer wait, and nothing is dropped. The
+// queue's hooks log pushes and takes in the order they happen (under its lock), so the check
+// holds under any scheduling; no sleep.
 TEST(CoreStage, BlockingPushWaitsForRoomAndDropsNothingThreaded) {
   std::promise<void> release;
   std::shared_future<void> released = release.get_future().share();
   std::vector<int> handled;
   std::mutex handled_mutex;
+  std::vector<char> log;  // 'p' push, 't' take; written with the queue's lock held
   Stage<int> stage(
       [&](int& input) {
         released.wait();
         std::lock_guard lock(handled_mutex);
         handled.push_back(input);
       },
-      {.threaded = true, .capacity = 2, .when_full = WhenFull::block});
+      {.threaded = true, .capacity = 2, .when_full = WhenFull::block},
+      {.on_push = [&] { log.push_back('p'); }, .on_take = [&] { log.push_back('t'); }});
   stage.push(0);  // taken by the thread, which then waits for the release
   while (stage.size() != 0) std::this_thread::yield();
   stage.push(1);
   stage.push(2);  // the queue is full now
-  std::atomic<bool> third_pushed{false};
+  std::promise<void> pushing;
   std::thread producer([&] {
+    pushing.set_value();
     stage.push(3);
-    third_pushed = true;
   });
-  std::this_thread::sleep_for(std::chrono::milliseconds(50));
-  EXPECT_FALSE(third_pushed);  // still waiting for room
+  pushing.get_future().wait();  // the producer is at its push, most likely ahead of the release
   release.set_value();
   producer.join();
   stage.waitUntilIdle();
   EXPECT_EQ(handled, (std::vector<int>{0, 1, 2, 3}));
+  // Never more than 2 queued: the 4th push came after the thread took item 1 (its 2nd take).
+  const std::string events(log.begin(), log.end());
+  ASSERT_EQ(events.size(), 8U) << events;
+  EXPECT_EQ(events.substr(0, 4), "ptpp") << events;
+  int queued = 0;
+  for (const char event : events) {
+    queued += event == 'p' ? 1 : -1;
+    EXPECT_LE(queued, 2) << events;
+  }
 }
 
 // Sequential, nobody else would make room: the push processes the oldest input itself.
@@ -146,8 +159,14 @@ TEST(CoreStage, StopReleasesAProducerBlockedOnAFullQueue) {
   while (!started) std::this_thread::yield();
   stage.push(1);  // fills the queue
   std::promise<bool> pushed;
-  std::thread producer([&] { pushed.set_value(stage.push(2)); });
-  std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  std::promise<void> pushing;
+  std::thread producer([&] {
+    pushing.set_value();
+    pushed.set_value(stage.push(2));
+  });
+  // The producer is at its push: most likely blocked when stop() comes; if stop() comes
+  // first, the push is refused just the same.
+  pushing.get_future().wait();
   std::thread stopper([&] { stage.stop(); });
   auto result = pushed.get_future();
   EXPECT_EQ(result.wait_for(std::chrono::seconds(60)), std::future_status::ready);

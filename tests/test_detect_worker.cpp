@@ -2,6 +2,9 @@
 // video of walking people (vtest.avi), errors, and clean shutdown while a job runs.
 #include <atomic>
 #include <chrono>
+#include <future>
+#include <mutex>
+#include <string>
 #include <thread>
 #include <vector>
 
@@ -43,24 +46,43 @@ WorkerParams workerParams(int stride, int queue_capacity) {
   return params;
 }
 
+Detections stampBox(double timestamp) {
+  return {{0, "person", 1.0f, cv::Rect2f(static_cast<float>(timestamp), 0, 10, 10)}};
+}
+
 // Answers with one box whose x is the frame's timestamp; optionally slow, optionally failing.
 class StampDetector : public Detector {
  public:
-  explicit StampDetector(std::chrono::milliseconds delay = {}, double failing_timestamp = -1.0,
-                         std::atomic<int>* started = nullptr)
-      : delay_(delay), failing_timestamp_(failing_timestamp), started_(started) {}
+  explicit StampDetector(std::chrono::milliseconds delay = {}, double failing_timestamp = -1.0)
+      : delay_(delay), failing_timestamp_(failing_timestamp) {}
   Detections detect(const cv::Mat&, double timestamp) override {
-    if (started_) ++*started_;
-    std::this_thread::sleep_for(delay_);
+    std::this_thread::sleep_for(delay_);  // inference time, not synchronisation
     if (timestamp == failing_timestamp_) fail("stamp detector: failing at {}", timestamp);
-    return {{0, "person", 1.0f, cv::Rect2f(static_cast<float>(timestamp), 0, 10, 10)}};
+    return stampBox(timestamp);
   }
   std::string describe() const override { return "stamp"; }
 
  private:
   std::chrono::milliseconds delay_;
   double failing_timestamp_;
-  std::atomic<int>* started_;
+};
+
+// Counts its detections, and each waits until the test opens the gate: an inference that lasts
+// exactly as long as the test needs.
+class GatedDetector : public Detector {
+ public:
+  GatedDetector(std::atomic<int>& started, std::shared_future<void> gate)
+      : started_(started), gate_(std::move(gate)) {}
+  Detections detect(const cv::Mat&, double timestamp) override {
+    ++started_;
+    gate_.wait();
+    return stampBox(timestamp);
+  }
+  std::string describe() const override { return "gated"; }
+
+ private:
+  std::atomic<int>& started_;
+  std::shared_future<void> gate_;
 };
 
 TEST(DetectionWorker, EachResultIsThatFramesOwnDetection) {
@@ -153,13 +175,21 @@ TEST(DetectionWorker, DetectorErrorReachesThatFrameOnly) {
   EXPECT_EQ(worker.take(2).detections.at(0).box.x, 2.0f);
 }
 
+// stop() while frame 0 is mid-inference and frames 1 and 2 are queued, under any scheduling
+// (no sleep): the inference ends only once stop() has dropped the queue. Two threads push frame
+// 3 onto the full queue; one gets in and waits for room, the other is refused (the index must
+// increase), so it knows the first waits, and calls stop(). The waiting push is refused once
+// stop() has dropped the queue (both under the queue's lock); only then is the gate opened.
 TEST(DetectionWorker, StopsCleanlyWhileAJobRunsAndWakesWaiters) {
   std::atomic<int> started{0};
+  std::promise<void> gate;
+  std::once_flag gate_opened;
+  const auto open_gate = [&] { std::call_once(gate_opened, [&] { gate.set_value(); }); };
   auto worker = std::make_unique<DetectionWorker>(
-      std::make_unique<StampDetector>(std::chrono::milliseconds(200), -1.0, &started),
-      workerParams(1, 2));
+      std::make_unique<GatedDetector>(started, gate.get_future().share()), workerParams(1, 2));
   worker->push(0, 0.0, cv::Mat());
   worker->push(1, 1.0, cv::Mat());
+  worker->push(2, 2.0, cv::Mat());  // returns once frame 0 is taken: 1 and 2 fill the queue
   std::atomic<bool> waiter_saw_error{false};
   std::thread waiter([&] {
     try {
@@ -168,12 +198,31 @@ TEST(DetectionWorker, StopsCleanlyWhileAJobRunsAndWakesWaiters) {
       waiter_saw_error = true;
     }
   });
-  while (started == 0) std::this_thread::sleep_for(std::chrono::milliseconds(1));
-  worker->stop();  // frame 0 is mid-inference, frame 1 still queued
+  std::atomic<int> refused_after_stop{0};
+  const auto push_or_stop = [&] {
+    try {
+      worker->push(3, 3.0, cv::Mat());
+      ADD_FAILURE() << "frame 3 was queued: its push neither waited for room nor was refused";
+    } catch (const Error& e) {
+      const std::string message = e.what();
+      if (message.find("indices must increase") != std::string::npos) {
+        worker->stop();  // frame 0 is mid-inference, frames 1 and 2 still queued
+        return;
+      }
+      EXPECT_NE(message.find("frame 3 pushed after stop()"), std::string::npos) << message;
+      ++refused_after_stop;
+    }
+    open_gate();
+  };
+  std::thread first(push_or_stop);
+  std::thread second(push_or_stop);
+  first.join();
+  second.join();
   waiter.join();
   EXPECT_TRUE(waiter_saw_error);
-  EXPECT_EQ(started, 1);  // the queued frame was dropped, not detected
-  EXPECT_THROW(worker->push(2, 2.0, cv::Mat()), Error);
+  EXPECT_EQ(refused_after_stop, 1);
+  EXPECT_EQ(started, 1);  // the queued frames were dropped, not detected
+  EXPECT_THROW(worker->push(4, 4.0, cv::Mat()), Error);
   worker.reset();  // destructor after stop(): no second join, no crash
 
   // Destroying without stop() while frames are in flight is safe too.

@@ -27,6 +27,9 @@ struct RunResult {
   std::size_t moving_features = 0;   // summed over the frames (TrackingOutcome::moving_features)
   double ground_truth_length = 0.0;  // metres travelled by the camera over the sequence
   eval::EvaluationReport report;
+  std::vector<track::TrackingOutcome> outcomes;  // per frame
+  std::vector<double> timestamps;                // per frame
+  Trajectory trajectory;                         // Pipeline::frameTrajectory()
 };
 
 // Edits the settings.yaml text the generator writes before it is parsed.
@@ -121,9 +124,13 @@ inline RunResult runOnPreset(const std::string& preset, int frames, std::uint64_
   options.enhance_preset = "off";
   options.sequential = config.sequential;
   Pipeline system(settings, options);
-  const FedFrames fed = feedFrames(
-      system, frames, [&](int i) { return sequence.render(i); }, settings.sensor);
   RunResult run;
+  const FedFrames fed = feedFrames(
+      system, frames, [&](int i) { return sequence.render(i); }, settings.sensor, {},
+      [&](const synth::Frame& frame, const FrameResult& result) {
+        run.outcomes.push_back(result.outcome);
+        run.timestamps.push_back(frame.timestamp());
+      });
   run.frames = static_cast<std::size_t>(frames);
   run.tracked = fed.tracked;
   run.first_tracked = fed.first_tracked;
@@ -131,6 +138,7 @@ inline RunResult runOnPreset(const std::string& preset, int frames, std::uint64_
   run.ground_truth_length = pathLength(fed.ground_truth);
   run.keyframes = system.keyFrameCount();
   run.report = evaluateRun(system, fed.ground_truth, settings.sensor);
+  run.trajectory = system.frameTrajectory();
   spdlog::info(
       "{} ({}): tracked {}/{} from frame {}, {} keyframes, {} points, ATE rmse {:.2f} mm "
       "over {:.2f} m ({:.3f} % of the path)",
