@@ -2,6 +2,7 @@
 // this test links only lumaslam::lumaslam (the shared library) and reads a sequence that
 // `lumaslam synth` wrote, as a user's own camera code would hand frames over.
 #include <cmath>
+#include <cstdio>
 #include <fstream>
 #include <limits>
 #include <sstream>
@@ -92,11 +93,16 @@ TEST_F(PublicApi, TracksASyntheticRgbdSequenceWithinOneCentimetre) {
   const CameraTrajectory trajectory = system.trajectory();
   EXPECT_EQ(trajectory.size(), static_cast<std::size_t>(tracked));
   const TrajectoryErrors errors = evaluate(trajectory, dataset.groundTruth());
-  EXPECT_LE(errors.ate.rmse, 0.01);
+  const TrajectoryErrors keyframes = evaluate(system.keyframeTrajectory(), dataset.groundTruth());
+  std::printf("public API, xyz-rgbd %d frames: ATE rmse %.2f mm (frames), %.2f mm (keyframes)\n",
+              kFrames, 1000.0 * errors.ate.rmse, 1000.0 * keyframes.ate.rmse);
+  // ~2x the measured ATE (issue 22; the name's centimetre was the first bound): 2.61 mm
+  // (frames) and 1.99 mm (keyframes), sequential; 2026-12-08, `build/tests/test_api_system
+  // --gtest_filter=*WithinOneCentimetre`, the "public API" line.
+  EXPECT_LE(errors.ate.rmse, 0.0055);
   EXPECT_GE(errors.coverage, 0.95);
   EXPECT_EQ(errors.scale, 1.0);
-  const TrajectoryErrors keyframes = evaluate(system.keyframeTrajectory(), dataset.groundTruth());
-  EXPECT_LE(keyframes.ate.rmse, 0.01);
+  EXPECT_LE(keyframes.ate.rmse, 0.004);
 }
 
 TEST_F(PublicApi, MatchesTheCliTrajectoryInSequentialMode) {
@@ -159,7 +165,11 @@ TEST_F(PublicApi, LocalizesInASavedMapWithoutAddingKeyframes) {
   EXPECT_EQ(localizing.keyframeCount(), mapped_keyframes);
   localizing.shutdown();
   const TrajectoryErrors errors = evaluate(localizing.trajectory(), dataset.groundTruth());
-  EXPECT_LE(errors.ate.rmse, 0.01);
+  std::printf("public API, localization in the saved map: ATE rmse %.2f mm\n",
+              1000.0 * errors.ate.rmse);
+  // ~2x the measured ATE (issue 22): 2.21 mm, sequential; 2026-12-08,
+  // `build/tests/test_api_system --gtest_filter=*LocalizesInASavedMap*`.
+  EXPECT_LE(errors.ate.rmse, 0.0045);
 }
 
 TEST_F(PublicApi, WrongSensorAndBadTimestampsAreErrors) {

@@ -3,6 +3,7 @@
 // summary.json is redone alone), and bad plans as errors naming the plan file and key.
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <fstream>
 #include <map>
 #include <string>
@@ -64,7 +65,13 @@ TEST(CliExperiment, RunsEveryCellTabulatesAndResumesOnlyUnfinishedRuns) {
     EXPECT_EQ(row.at("status"), "complete");
     EXPECT_EQ(row.at("frames"), "40");
     ASSERT_FALSE(row.at("ate_rmse").empty()) << row.at("dataset");
-    EXPECT_LT(std::stod(row.at("ate_rmse")), 0.01) << row.at("dataset") << " " << row.at("config");
+    std::printf("%s / %s: ATE rmse %.2f mm\n", row.at("dataset").c_str(), row.at("config").c_str(),
+                1000.0 * std::stod(row.at("ate_rmse")));
+    // ~2x the worst cell's ATE (issue 22): 2.03 / 1.88 mm (seed 1, enhance-off / default), 2.29 /
+    // 2.77 mm (seed 2), sequential; 2026-12-08, `build/tests/test_cli_experiment
+    // --gtest_filter=*RunsEveryCell*`, the printed lines.
+    EXPECT_LT(std::stod(row.at("ate_rmse")), 0.0055)
+        << row.at("dataset") << " " << row.at("config");
     // Sequential runs are deterministic: both runs of a cell give the same ATE.
     const auto [it, first_run] =
         ate_of_cell.emplace(row.at("dataset") + "/" + row.at("config"), row.at("ate_rmse"));

@@ -231,11 +231,14 @@ TEST(LoopCloser, ClosesAMonocularLoopWithSim3AndCorrectsTheScaleDrift) {
   // Only half of the excess is required: the Ceres refinement moves the RANSAC scale (1.315
   // for 1.322 expected) to 1.19, because this map is not self-consistent (a point carries
   // its reference keyframe's drift into later keyframes with another drift) and the two
-  // keyframes are close, so reprojections observe the scale weakly.
+  // keyframes are close, so reprojections observe the scale weakly. Measured 2026-12-08
+  // (sequential, 2 runs identical; `build/tests/test_loop_closer --gtest_filter=*Sim3*`, the
+  // "Sim3 loop" line): scale 1.1931 for 1.3216 expected, 60 % of the excess; keyframe RMSE
+  // 419.6 -> 26.0 mm (6.2 %), bounded at ~2x (issue 22; it was 50 %).
   const double expected_scale = scales[loop.current] / scales[loop.loop];
   EXPECT_GT(loop.correction_scale, 1.0 + 0.5 * (expected_scale - 1.0));
   EXPECT_LT(loop.correction_scale, expected_scale * 1.03);
-  EXPECT_LT(after, 0.5 * before);
+  EXPECT_LT(after, 0.125 * before);
   EXPECT_EQ(closer.globalBundleAdjustmentStats().completed, 1);
 }
 

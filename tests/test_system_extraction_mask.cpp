@@ -130,7 +130,9 @@ TEST(SystemExtractionMask, PeopleSittingCloseToTheCameraLeaveEnoughFeaturesToSta
   options.motion_evidence = false;  // box removal alone
   const auto run = test::runSynthetic(sequence, options);
   EXPECT_GE(run.tracked, run.frames - 1);
-  EXPECT_LE(run.ate(), 0.01);  // measured 4.9 mm (issue 22: ~2x)
+  // ~2x the measured ATE (issue 22): 4.9 mm, 99/100 tracked (sequential; 2026-12-08,
+  // `build/tests/test_system_extraction_mask --gtest_filter=*PeopleSitting*`, "ATE rmse").
+  EXPECT_LE(run.ate(), 0.01);
 }
 
 }  // namespace

@@ -72,9 +72,11 @@ TEST(SystemResize, HalfSizeRgbdTracksEveryFrame) {
   half_size.edit = atHalfSize;
   const auto half = test::runOnPreset("xyz-rgbd", 100, 1, half_size);
   EXPECT_EQ(half.tracked, 100U);
-  // Measured 2026-12-04 (sequential): 11.5 mm at half size, 3.0 mm at full size (runOnPreset's
-  // log line); coarser pixels, and the full-size tests hold the full-size bound.
-  EXPECT_LE(half.report.ate.stats.rmse, 0.023);
+  // ~2x the measured ATE (issue 22): 10.54 mm at half size (sequential; 2026-12-08,
+  // `build/tests/test_system_resize --gtest_filter=*HalfSize*`, runOnPreset's log line; 11.5 mm
+  // on 2026-12-04), 3.0 mm at full size: coarser pixels, and the full-size tests hold the
+  // full-size bound.
+  EXPECT_LE(half.report.ate.stats.rmse, 0.021);
 }
 
 }  // namespace

@@ -20,15 +20,17 @@ test::SyntheticRun runWithoutDetector(const synth::SequenceRenderer& sequence,
 }
 
 // Seed 3 of walking_xyz: the crate is large and close in frame 0 and the residual test alone
-// lets the pose follow it (docs/dynamic.md). Measured 2026-12-06: 154.8 -> 83.1 mm; the bounds
-// are ~2x that (issue 22) and a ratio of 0.65. Issue 16's target (<= 3 cm) is NOT met here.
+// lets the pose follow it (docs/dynamic.md). Measured 2026-12-08: 156.1 -> 32.2 mm, a ratio of
+// 0.206 (sequential, 2 runs identical; `build/tests/test_system_rigid_consensus
+// --gtest_filter=*Crate*`, the two "ATE rmse" lines; 154.8 -> 83.1 mm on 2026-12-06). The bounds
+// are ~2x that (issue 22). Issue 16's target (<= 3 cm) is NOT met here.
 TEST(SystemRigidConsensus, KeepsThePoseOffACrateThatResidualsMiss) {
   const synth::SequenceRenderer sequence(synth::findPreset("walking-xyz-rgbd"), 150, 3);
   const auto residuals_only = runWithoutDetector(sequence);
   const auto rigid = runWithoutDetector(sequence, kRigid);
   EXPECT_EQ(rigid.tracked, rigid.frames);
-  EXPECT_LE(rigid.ate(), 0.17);
-  EXPECT_LE(rigid.ate(), 0.65 * residuals_only.ate()) << "without " << residuals_only.ate();
+  EXPECT_LE(rigid.ate(), 0.065);
+  EXPECT_LE(rigid.ate(), 0.42 * residuals_only.ate()) << "without " << residuals_only.ate();
 }
 
 // Nothing moves, or people sit and shift slowly: no more than 10 % above the run without it
