@@ -12,11 +12,14 @@ using namespace lumaslam;
 
 constexpr const char* kRigid = "\nDynamic.rigidConsensus: 1\n";
 
+// With the map-start test off (test_system_map_start.cpp has it): these measure the rigid
+// consensus alone.
 test::SyntheticRun runWithoutDetector(const synth::SequenceRenderer& sequence,
                                       const std::string& extra = {}) {
   PipelineOptions options;
   options.detector = "none";
-  return test::runSynthetic(sequence, options, {}, extra);
+  return test::runSynthetic(sequence, options, {},
+                            "\nDynamic.mapStartSegmentation: 0\n" + extra);
 }
 
 // Seed 3 of walking_xyz: the crate is large and close in frame 0 and the residual test alone

@@ -17,6 +17,7 @@
 #include "lumaslam/map/ids.h"
 #include "lumaslam/track/frame.h"
 #include "lumaslam/track/frame_camera.h"
+#include "lumaslam/track/origin_segmentation.h"
 #include "lumaslam/track/rigid_consensus.h"
 
 namespace lumaslam::track {
@@ -44,6 +45,8 @@ struct MotionEvidenceParams {
   // Dynamic.rigidConsensus. Off by default until measured on real data (docs/dynamic.md).
   bool rigidity = false;
   RigidConsensusParams rigid;
+  // A map's first frames against its origin keyframe (origin_segmentation.h; RGB-D, stereo).
+  OriginSegmentationParams origin;
 };
 
 // Log-likelihood ratio static : moving of one residual, from its chi-square value over the

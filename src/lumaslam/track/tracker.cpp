@@ -288,6 +288,7 @@ bool Tracker::initialize() {
   last_keyframe_frame_ = current_.index;
   current_.reference = kf;
   local_keyframes_ = {kf};
+  depth_map_origin_ = kf;
   inliers_ = static_cast<int>(with_depth);
   return true;
 }
@@ -654,6 +655,7 @@ int Tracker::searchLocalPoints() {
 }
 
 bool Tracker::trackLocalMap(TrackingOutcome& outcome) {
+  segmentAgainstMapOrigin();
   updateLocalMap();
   searchLocalPoints();
   testRigidity();
@@ -682,6 +684,11 @@ void Tracker::optimizeConfirmedPointsFirst() {
   }
   auto trusted = confirmedStaticMatches();
   int count = static_cast<int>(std::count(trusted.begin(), trusted.end(), true));
+  // A map's first frames: what moved with the camera since the origin keyframe, first.
+  if (origin_verdict_.holds >= params_.min_confirmed_points) {
+    for (std::size_t i = 0; i < current_.size(); ++i) trusted[i] = origin_verdict_.holdsAt(i);
+    count = origin_verdict_.holds;
+  }
   // A map's first frames have nothing confirmed yet: the rigid consensus stands in for it.
   if (count < params_.min_confirmed_points && rigidity_.informative() &&
       rigidity_.holds >= params_.min_confirmed_points) {
@@ -733,9 +740,40 @@ void Tracker::joinMatchesThatFit(const std::vector<bool>& trusted, int trusted_c
 
 void Tracker::testRigidity() {
   rigidity_ = {};
-  if (!motion_evidence_.enabled() || !params_.motion_evidence.rigidity || camera_.bf <= 0.0) return;
+  if (!motion_evidence_.enabled() || camera_.bf <= 0.0) return;
   const auto start = std::chrono::steady_clock::now();
-  rigidity_ = rigidConsensus(current_, camera_.intrinsics(), params_.motion_evidence.rigid);
+  if (params_.motion_evidence.rigidity) {
+    rigidity_ = rigidConsensus(current_, camera_.intrinsics(), params_.motion_evidence.rigid);
+  }
+  if (origin_verdict_.informative()) rigidity_ = origin_verdict_;
+  rigidity_ms_ +=
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+// A map's first frames (origin_segmentation.h): the static motion since the origin keyframe
+// restarts the pose and the matches, and a second motion's features are broken for this
+// frame's rigidity. Once the origin is out of view the test ends for the map.
+void Tracker::segmentAgainstMapOrigin() {
+  origin_verdict_ = {};
+  const auto& params = params_.motion_evidence.origin;
+  if (!motion_evidence_.enabled() || !params.enabled || camera_.bf <= 0.0 || !depth_map_origin_ ||
+      depth_map_origin_->isBad() || !reference_ ||
+      depth_map_origin_->mapId() != reference_->mapId() ||
+      current_.index > depth_map_origin_->frameIndex() +
+                           static_cast<std::size_t>(std::max(0, params.window_frames))) {
+    return;
+  }
+  const auto start = std::chrono::steady_clock::now();
+  const auto size = camera_.size();
+  auto segments = segmentAgainstOrigin(current_, *depth_map_origin_, camera_.intrinsics(),
+                                       size.width, size.height, params);
+  if (segments.pairs < params.min_points) depth_map_origin_.reset();
+  if (segments.T_current_origin) {
+    current_.T_c_w = *segments.T_current_origin * depth_map_origin_->T_c_w();
+    current_.clearMatches();
+    current_.points = std::move(segments.static_matches);
+  }
+  origin_verdict_ = std::move(segments.verdict);
   rigidity_ms_ +=
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }

@@ -17,6 +17,7 @@
 #include "lumaslam/track/keyframe_sink.h"
 #include "lumaslam/track/monocular_initializer.h"
 #include "lumaslam/track/motion_evidence.h"
+#include "lumaslam/track/origin_segmentation.h"
 #include "lumaslam/track/trajectory_recorder.h"
 
 namespace lumaslam::track {
@@ -165,6 +166,7 @@ class Tracker {
   void excludeMovingPoints(TrackingOutcome& outcome);
   bool leftOutOfPose(const map::MapPoint& point, std::size_t feature) const;
   void testRigidity();
+  void segmentAgainstMapOrigin();
   std::vector<bool> confirmedStaticMatches() const;
   void joinMatchesThatFit(const std::vector<bool>& trusted, int trusted_count);
   std::vector<bool> notRigidlyBroken() const;
@@ -198,8 +200,11 @@ class Tracker {
   map::MapId active_map_ = 0;         // the map new keyframes start in (follows merges)
   DynamicPointMemory dynamic_memory_;
   MotionEvidence motion_evidence_;
-  RigidVerdict rigidity_;     // of current_'s matches as they are now (rigid_consensus.h)
-  double rigidity_ms_ = 0.0;  // this frame's rigid consensus tests, part of motion_evidence_ms
+  RigidVerdict rigidity_;  // of current_'s matches as they are now (rigid_consensus.h)
+  // The first keyframe of the map made from depth (RGB-D, stereo): origin_segmentation.h.
+  std::shared_ptr<const map::KeyFrame> depth_map_origin_;
+  RigidVerdict origin_verdict_;  // this frame's, from segmentAgainstMapOrigin
+  double rigidity_ms_ = 0.0;     // this frame's rigid consensus tests, part of motion_evidence_ms
   bool localization_only_ = false;
   TrajectoryRecorder recorder_;
   std::unique_ptr<MonocularInitializer> monocular_initializer_;

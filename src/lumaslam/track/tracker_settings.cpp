@@ -44,6 +44,9 @@ void visitDynamicKeys(Keys& keys, MotionEvidenceParams& p) {
   keys("regionRestingAbove", p.region_resting_above, Range::between(0.0, 20.0));
   keys("maxOutlierFraction", p.max_outlier_fraction, Range::between(0.0, 1.0));
   keys("rigidConsensus", p.rigidity);
+  keys("mapStartSegmentation", p.origin.enabled);
+  keys("mapStartFrames", p.origin.window_frames, Range::atLeast(0));
+  keys("mapStartLateralPixels", p.origin.lateral_tolerance_px, Range::above(0.0));
 }
 
 // Initializer.*: the monocular two-view start (MonocularInitParams and its TwoViewParams;
