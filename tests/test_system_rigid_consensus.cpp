@@ -18,8 +18,7 @@ test::SyntheticRun runWithoutDetector(const synth::SequenceRenderer& sequence,
                                       const std::string& extra = {}) {
   PipelineOptions options;
   options.detector = "none";
-  return test::runSynthetic(sequence, options, {},
-                            "\nDynamic.mapStartSegmentation: 0\n" + extra);
+  return test::runSynthetic(sequence, options, {}, "\nDynamic.mapStartSegmentation: 0\n" + extra);
 }
 
 // Seed 3 of walking_xyz: the crate is large and close in frame 0 and the residual test alone
