@@ -133,7 +133,9 @@ TEST_F(PrepareAhead, APreparedFrameThatIsNotTrackedLeavesNothingPending) {
     test::expectTrackedOrLost(outcomes);
     test::expectEachTrackedFrameOnce(system.frameTrajectory(),
                                      test::trackedTimestamps(outcomes, timestamps));
-    if (sequential) EXPECT_EQ(system.frameTrajectory().size(), 5U);
+    if (sequential) {
+      EXPECT_EQ(system.frameTrajectory().size(), 5U);
+    }
   }
 }
 
