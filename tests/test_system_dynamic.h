@@ -68,4 +68,12 @@ inline SyntheticRun runSynthetic(const synth::SequenceRenderer& sequence, Pipeli
   return run;
 }
 
+// runSynthetic with no detector, `extra_settings` appended to the settings.
+inline SyntheticRun runWithoutDetector(const synth::SequenceRenderer& sequence,
+                                       const std::string& extra_settings = {}) {
+  PipelineOptions options;
+  options.detector = "none";
+  return runSynthetic(sequence, options, {}, extra_settings);
+}
+
 }  // namespace lumaslam::test

@@ -10,14 +10,9 @@ namespace {
 
 using namespace lumaslam;
 
-constexpr const char* kOff = "\nDynamic.mapStartSegmentation: 0\n";
+constexpr const char* kOn = "\nDynamic.mapStartSegmentation: 1\n";
 
-test::SyntheticRun runWithoutDetector(const synth::SequenceRenderer& sequence,
-                                      const std::string& extra = {}) {
-  PipelineOptions options;
-  options.detector = "none";
-  return test::runSynthetic(sequence, options, {}, extra);
-}
+using test::runWithoutDetector;
 
 // Seed 3 of walking_xyz: the crate is large and close in frame 0; without the test the pose
 // follows it by ~2 cm a frame for 40 frames. Measured 2026-12-08: 8.2 mm on, 156.1
@@ -25,8 +20,8 @@ test::SyntheticRun runWithoutDetector(const synth::SequenceRenderer& sequence,
 // rmse" lines). Bounds ~2x (issue 22).
 TEST(SystemMapStart, KeepsThePoseOffACrateCloseInFrameZero) {
   const synth::SequenceRenderer sequence(synth::findPreset("walking-xyz-rgbd"), 150, 3);
-  const auto off = runWithoutDetector(sequence, kOff);
-  const auto on = runWithoutDetector(sequence);
+  const auto off = runWithoutDetector(sequence);
+  const auto on = runWithoutDetector(sequence, kOn);
   EXPECT_EQ(on.tracked, on.frames);
   EXPECT_LE(on.ate(), 0.016);
   EXPECT_LE(on.ate(), 0.1 * off.ate()) << "without " << off.ate();
@@ -36,8 +31,8 @@ TEST(SystemMapStart, KeepsThePoseOffACrateCloseInFrameZero) {
 // issue 16's rule for the motion test.
 TEST(SystemMapStart, DoesNoHarmOnAStaticScene) {
   const synth::SequenceRenderer sequence(synth::findPreset("xyz-rgbd"), 100, 1);
-  const auto off = runWithoutDetector(sequence, kOff);
-  const auto on = runWithoutDetector(sequence);
+  const auto off = runWithoutDetector(sequence);
+  const auto on = runWithoutDetector(sequence, kOn);
   EXPECT_EQ(on.tracked, on.frames);
   EXPECT_LE(on.ate(), 1.1 * off.ate() + 0.0005) << "without " << off.ate();
 }

@@ -16,9 +16,7 @@ constexpr const char* kRigid = "\nDynamic.rigidConsensus: 1\n";
 // consensus alone.
 test::SyntheticRun runWithoutDetector(const synth::SequenceRenderer& sequence,
                                       const std::string& extra = {}) {
-  PipelineOptions options;
-  options.detector = "none";
-  return test::runSynthetic(sequence, options, {}, "\nDynamic.mapStartSegmentation: 0\n" + extra);
+  return test::runWithoutDetector(sequence, "\nDynamic.mapStartSegmentation: 0\n" + extra);
 }
 
 // Seed 3 of walking_xyz: the crate is large and close in frame 0 and the residual test alone

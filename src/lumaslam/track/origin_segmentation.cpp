@@ -161,6 +161,35 @@ int coveredCells(const Frame& current, const std::vector<OriginPair>& pairs,
   return static_cast<int>(cells.size());
 }
 
+// A motion that follows a mover with a compensating turn also fits the far static scene: the
+// two motions are told apart by the points only each of them explains. The mover's are a
+// compact region; the static scene's are spread over the image. Returns whether `first` is
+// the static one; `second`'s inliers become those over all pairs.
+bool firstIsStatic(const Frame& current, const std::vector<OriginPair>& pairs,
+                   const FoundMotion& first, FoundMotion& second, int width, int height,
+                   const OriginSegmentationParams& params) {
+  second.inliers = inliersOf(pairs, second.motion, std::vector<bool>(pairs.size(), true));
+  const auto only_first = notFitting(pairs, first.inliers, second.motion);
+  const auto only_second = notFitting(pairs, second.inliers, first.motion);
+  return coveredCells(current, pairs, only_first, width, height, params.cell_px) >=
+         coveredCells(current, pairs, only_second, width, height, params.cell_px);
+}
+
+// Holds for the static motion's pairs; Broken for those only the other motion fits.
+RigidVerdict verdictOf(std::size_t features, const std::vector<OriginPair>& pairs,
+                       const FoundMotion& still, const FoundMotion* moved) {
+  RigidVerdict verdict;
+  verdict.per_feature.assign(features, Rigidity::Untested);
+  for (const std::size_t p : still.inliers) verdict.per_feature[pairs[p].feature] = Rigidity::Holds;
+  verdict.holds = static_cast<int>(still.inliers.size());
+  if (!moved) return verdict;
+  for (const std::size_t p : notFitting(pairs, moved->inliers, still.motion)) {
+    verdict.per_feature[pairs[p].feature] = Rigidity::Broken;
+    ++verdict.broken;
+  }
+  return verdict;
+}
+
 }  // namespace
 
 OriginSegmentation segmentAgainstOrigin(const Frame& current, const map::KeyFrame& origin,
@@ -170,49 +199,30 @@ OriginSegmentation segmentAgainstOrigin(const Frame& current, const map::KeyFram
   const auto pairs = pairsWithOrigin(current, origin, k, params);
   result.pairs = static_cast<int>(pairs.size());
   if (pairs.size() < static_cast<std::size_t>(std::max(3, params.min_points))) return result;
-  const std::vector<bool> all(pairs.size(), true);
-  auto first = dominantMotion(pairs, all, params);
+  std::vector<bool> rest(pairs.size(), true);
+  auto first = dominantMotion(pairs, rest, params);
   if (!first) return result;
-  std::vector<bool> rest = all;
   for (const std::size_t p : first->inliers) rest[p] = false;
   auto second = dominantMotion(pairs, rest, params);
-  const bool two_motions = second && second->inliers.size() >= static_cast<std::size_t>(std::max(
-                                                                   3, params.min_mover_points));
-  // A motion that follows a mover with a compensating turn also fits the far static scene:
-  // the two motions are told apart by the points only each of them explains. The mover's are
-  // a compact region; the static scene's are spread over the image.
-  bool first_static = true;
-  if (two_motions) {
-    second->inliers = inliersOf(pairs, second->motion, all);
-    const auto only_first = notFitting(pairs, first->inliers, second->motion);
-    const auto only_second = notFitting(pairs, second->inliers, first->motion);
-    first_static =
-        coveredCells(current, pairs, only_first, image_width, image_height, params.cell_px) >=
-        coveredCells(current, pairs, only_second, image_width, image_height, params.cell_px);
-  }
+  const auto min_mover = static_cast<std::size_t>(std::max(3, params.min_mover_points));
+  if (second && second->inliers.size() < min_mover) second.reset();
+  const bool first_static =
+      !second || firstIsStatic(current, pairs, *first, *second, image_width, image_height, params);
   const FoundMotion& still = first_static ? *first : *second;
+  const FoundMotion* moved = !second ? nullptr : first_static ? &*second : &*first;
   spdlog::debug("frame {}: origin pairs {}, static {}, other {}", current.index, pairs.size(),
-                still.inliers.size(),
-                two_motions ? (first_static ? second : first)->inliers.size() : 0);
-  if (still.inliers.size() >= static_cast<std::size_t>(params.min_points) &&
-      static_cast<double>(still.inliers.size()) >=
-          params.min_static_fraction * static_cast<double>(pairs.size())) {
+                still.inliers.size(), moved ? moved->inliers.size() : 0);
+  const bool enough = still.inliers.size() >= static_cast<std::size_t>(params.min_points) &&
+                      static_cast<double>(still.inliers.size()) >=
+                          params.min_static_fraction * static_cast<double>(pairs.size());
+  if (enough) {
     result.T_current_origin = still.motion;
     result.static_matches.assign(current.size(), nullptr);
-    for (const std::size_t p : still.inliers)
+    for (const std::size_t p : still.inliers) {
       result.static_matches[pairs[p].feature] = pairs[p].point;
+    }
   }
-  if (!result.T_current_origin && !two_motions) return result;
-  auto& verdict = result.verdict;
-  verdict.per_feature.assign(current.size(), Rigidity::Untested);
-  for (const std::size_t p : still.inliers) verdict.per_feature[pairs[p].feature] = Rigidity::Holds;
-  verdict.holds = static_cast<int>(still.inliers.size());
-  if (!two_motions) return result;
-  const FoundMotion& moved = first_static ? *second : *first;
-  for (const std::size_t p : notFitting(pairs, moved.inliers, still.motion)) {
-    verdict.per_feature[pairs[p].feature] = Rigidity::Broken;
-    ++verdict.broken;
-  }
+  if (enough || moved) result.verdict = verdictOf(current.size(), pairs, still, moved);
   return result;
 }
 

@@ -24,9 +24,11 @@
 namespace lumaslam::track {
 
 struct OriginSegmentationParams {
-  bool enabled = true;
+  // Off by default until two behaviour changes it causes are understood (docs/dynamic.md).
+  bool enabled = false;
   // Frames after a map's first during which the test runs; it ends earlier, for good, at the
-  // first frame with fewer than min_points pairs (the origin is out of view).
+  // first frame with fewer than min_points pairs (the origin is out of view) or the first
+  // lost frame (what follows is recovery, not the map's start).
   int window_frames = 150;
   int min_points = 30;  // pairs needed for a verdict
   int min_mover_points = 12;

@@ -175,6 +175,7 @@ void Tracker::recordLostFrame(TrackingState previous) {
     lost_since_ = current_.timestamp;
   }
   velocity_.reset();
+  depth_map_origin_.reset();  // the map-start test ends at the map's first loss
   recorder_.recordLost(current_.timestamp);
   current_.T_c_w.reset();
 }
