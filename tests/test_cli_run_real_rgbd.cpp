@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "test_cli.h"
+#include "threaded_run_checks.h"
 
 namespace {
 
@@ -41,19 +42,11 @@ void writeSubsampled(const std::filesystem::path& dir, int stride) {
 
 // Longest run of consecutive lost frames after the first tracked one (timing.csv).
 int longestLostRun(const std::filesystem::path& out) {
-  std::ifstream timing(out / "timing.csv");
-  std::string line;
-  std::getline(timing, line);  // header
   bool started = false;
   int run = 0;
   int longest = 0;
-  while (std::getline(timing, line)) {
-    std::stringstream fields(line);
-    std::string frame, timestamp, state;
-    std::getline(fields, frame, ',');
-    std::getline(fields, timestamp, ',');
-    std::getline(fields, state, ',');
-    if (state == "ok") {
+  for (const auto& row : lumaslam::test::readTimingRows(out)) {
+    if (row.state == "ok") {
       started = true;
       run = 0;
     } else if (started) {

@@ -103,28 +103,42 @@ inline void expectThreadedRun(const std::vector<track::TrackingOutcome>& outcome
   expectMostlyTracked(trackedFlags(outcomes));
 }
 
+// One row of a `lumaslam run` timing.csv: its first three fields.
+struct TimingRow {
+  std::string frame, timestamp, state;
+};
+
+inline std::vector<TimingRow> readTimingRows(const std::filesystem::path& out) {
+  std::ifstream timing(out / "timing.csv");
+  std::string line;
+  EXPECT_TRUE(std::getline(timing, line)) << out / "timing.csv";  // header
+  std::vector<TimingRow> rows;
+  while (std::getline(timing, line)) {
+    std::stringstream fields(line);
+    TimingRow row;
+    std::getline(fields, row.frame, ',');
+    std::getline(fields, row.timestamp, ',');
+    std::getline(fields, row.state, ',');
+    rows.push_back(row);
+  }
+  return rows;
+}
+
 // The same for a `lumaslam run` output folder with one map: timing.csv has one row per frame,
 // frames 0 to frames - 1 in order, each "ok" or "lost" ("not initialized" only before the first
 // "ok"); trajectory.txt has the "ok" frames, each once. Returns how many were "ok".
 inline std::size_t expectThreadedRunFiles(const std::filesystem::path& out, int frames) {
-  std::ifstream timing(out / "timing.csv");
-  std::string line;
-  EXPECT_TRUE(std::getline(timing, line)) << out / "timing.csv";  // header
   std::vector<bool> tracked;
   std::vector<double> tracked_timestamps;
-  while (std::getline(timing, line)) {
-    std::stringstream fields(line);
-    std::string frame, timestamp, state;
-    std::getline(fields, frame, ',');
-    std::getline(fields, timestamp, ',');
-    std::getline(fields, state, ',');
-    EXPECT_EQ(frame, std::to_string(tracked.size())) << "timing.csv: " << line;
-    const bool ok = state == "ok";
+  for (const auto& row : readTimingRows(out)) {
+    const std::string line = row.frame + "," + row.timestamp + "," + row.state;
+    EXPECT_EQ(row.frame, std::to_string(tracked.size())) << "timing.csv: " << line;
+    const bool ok = row.state == "ok";
     const bool started = std::find(tracked.begin(), tracked.end(), true) != tracked.end();
-    EXPECT_TRUE(ok || state == "lost" || (!started && state == "not initialized"))
+    EXPECT_TRUE(ok || row.state == "lost" || (!started && row.state == "not initialized"))
         << "timing.csv: " << line;
     tracked.push_back(ok);
-    if (ok) tracked_timestamps.push_back(std::stod(timestamp));
+    if (ok) tracked_timestamps.push_back(std::stod(row.timestamp));
   }
   EXPECT_EQ(tracked.size(), static_cast<std::size_t>(frames)) << "timing.csv rows";
   expectEachTrackedFrameOnce(io::readTrajectory(out / "trajectory.txt"), tracked_timestamps);
